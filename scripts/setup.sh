@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Installs what globular needs from Debian's packages, only what is missing, then
+# configures and builds. Idempotent: a second run installs nothing and rebuilds
+# incrementally.
+#   scripts/setup.sh            release build in build/
+#   BUILD_DIR=x BUILD_TYPE=Debug SANITIZE=ON scripts/setup.sh
+#   WITH_PEERS=1 scripts/setup.sh   also the benchmark peers (lammps, hyperfine)
+set -euo pipefail
+
+packages=(
+    build-essential cmake ninja-build pkg-config
+    libopenvdb-dev libopenvdb-tools libboost-iostreams-dev libblosc-dev
+    libtbb-dev libeigen3-dev
+    libosmesa6-dev libpng-dev
+    libtomlplusplus-dev libcli11-dev
+    libgtest-dev libgmock-dev libbenchmark-dev
+    gnuplot-nox
+)
+if [[ "${WITH_PEERS:-0}" == 1 ]]; then
+    packages+=(lammps hyperfine ffmpeg)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' \
+        || missing+=("$p")
+done
+if ((${#missing[@]})); then
+    echo "setup: installing ${missing[*]}"
+    sudo=""
+    [[ $(id -u) == 0 ]] || sudo="sudo"
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends \
+        "${missing[@]}"
+fi
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build=${BUILD_DIR:-$root/build}
+cmake -S "$root" -B "$build" -G Ninja \
+    -DCMAKE_BUILD_TYPE="${BUILD_TYPE:-Release}" \
+    -DGLOBULAR_SANITIZE="${SANITIZE:-OFF}" >/dev/null
+cmake --build "$build" -j "$(nproc)"

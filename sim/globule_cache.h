@@ -1,0 +1,35 @@
+#pragma once
+// Per-frame globule caches. The VDB cache is an OpenVDB PointDataGrid named "globules"
+// with attributes P, v (Vec3f), pscale (radius, float) and id (int32): the names Houdini
+// reads. The PLY cache (binary little endian, vertex properties x y z vx vy vz radius id)
+// is what Blender imports. Both are written atomically (atomic_file.h).
+// OpenVDB headers stay inside globule_cache.cpp: this header is cheap to include.
+
+#include <filesystem>
+
+#include "globules.h"
+
+namespace globular {
+
+/// Frame metadata stored beside the globules.
+struct CacheInfo {
+    int frame = 0;
+    double time = 0;  ///< seconds since the start of the simulation
+};
+
+/// @throw IoError naming @p path when it cannot be written.
+void writeGlobuleVdb(const std::filesystem::path& path, const Globules& globules,
+                     const CacheInfo& info);
+/// Reads a cache written by writeGlobuleVdb (or any PointDataGrid "globules" with P;
+/// v, pscale, id optional). Mass is set to 1.
+/// @throw IoError naming @p path when it is missing, truncated or corrupt.
+Globules readGlobuleVdb(const std::filesystem::path& path, CacheInfo* info = nullptr);
+
+/// Binary PLY: x y z vx vy vz radius (float) id (int).
+void writeGlobulePly(const std::filesystem::path& path, const Globules& globules);
+/// Reads a PLY point cloud (ascii or binary little endian). Vertex properties x y z are
+/// required; vx vy vz radius id optional (defaults: 0, @p defaultRadius, index).
+/// @throw IoError naming @p path and what is wrong.
+Globules readGlobulePly(const std::filesystem::path& path, float defaultRadius = 1.0f);
+
+}  // namespace globular
