@@ -1,8 +1,66 @@
+// The `globular` command: parse options, run, and turn errors into messages and exit
+// codes (0 success, 1 a run failed, 2 bad usage or a bad scene).
+
+#include <CLI/CLI.hpp>
+
 #include <cstdio>
+#include <iostream>
 
+#include "console_reporter.h"
+#include "errors.h"
 #include "globular_version.h"
+#include "run_command.h"
 
-int main() {
-    std::printf("globular %s\n", GLOBULAR_VERSION);
+namespace {
+
+constexpr int kRunFailed = 1;
+constexpr int kBadInput = 2;
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"globular: viscous fluid, powder and soft solids with globular dynamics "
+                 "(Miller & Pearce 1989), from scene file to caches, VDB surfaces and frames"};
+    app.set_version_flag("--version", std::string("globular ") + GLOBULAR_VERSION);
+    app.require_subcommand(1);
+
+    globular::RunOptions run;
+    bool quiet = false;
+    std::string stages = "sim,surface,render";
+    CLI::App* runCmd = app.add_subcommand("run", "simulate, surface and render a scene");
+    runCmd->add_option("scene", run.scene, "scene file (TOML); omitted: the default scene");
+    runCmd->add_option("--out,-o", run.outDir, "output directory (default out/<scene name>)");
+    runCmd->add_option("--stages", stages, "comma-separated stages: sim,surface,render")
+        ->capture_default_str();
+    runCmd->add_option("--frames", run.frames, "frame range A-B for surface and render");
+    runCmd->add_option("--threads", run.threads, "worker threads (0 = all cores)")
+        ->capture_default_str();
+    runCmd->add_option("--set", run.overrides, "override a scene key: --set material.b1=3");
+    runCmd->add_flag("--resume", run.resume, "continue an interrupted run in --out");
+    runCmd->add_flag("--quiet,-q", quiet, "only warnings and errors");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e) == 0 ? 0 : kBadInput;
+    }
+
+    globular::ConsoleReporter reporter(stderr, quiet);
+    try {
+        if (runCmd->parsed()) {
+            run.stages.clear();
+            std::stringstream list(stages);
+            for (std::string s; std::getline(list, s, ',');) {
+                if (!s.empty()) run.stages.push_back(s);
+            }
+            globular::runScene(run, reporter);
+        }
+    } catch (const globular::SceneError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return kBadInput;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return kRunFailed;
+    }
     return 0;
 }

@@ -1,0 +1,99 @@
+#include "run_command.h"
+
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <regex>
+
+#include "atomic_file.h"
+#include "default_scene.h"
+#include "errors.h"
+#include "reporter.h"
+#include "scene.h"
+#include "sim_stage.h"
+#include "stage_context.h"
+#include "state_file.h"
+
+namespace globular {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::vector<std::string> kStages = {"sim", "surface", "render"};
+
+struct FrameRange {
+    int first = 1, last = 1;
+};
+
+FrameRange parseFrames(const std::string& text, int frames) {
+    if (text.empty()) return {1, frames};
+    std::smatch match;
+    static const std::regex pattern(R"(^\s*(\d+)\s*(?:-\s*(\d+)\s*)?$)");
+    if (!std::regex_match(text, match, pattern)) {
+        throw SceneError("--frames " + text + ": expected A-B or N, e.g. --frames 1-48");
+    }
+    const long first = std::stol(match[1]);
+    const long last = match[2].matched ? std::stol(match[2]) : first;
+    if (first < 1 || last < first || last > frames) {
+        throw SceneError("--frames " + text + ": must lie within 1-" + std::to_string(frames) +
+                         " (the scene has " + std::to_string(frames) + " frames) with A <= B");
+    }
+    return {int(first), int(last)};
+}
+
+void checkStages(const std::vector<std::string>& stages) {
+    if (stages.empty()) throw SceneError("--stages: name at least one of sim,surface,render");
+    for (const auto& s : stages) {
+        if (std::find(kStages.begin(), kStages.end(), s) == kStages.end()) {
+            throw SceneError("--stages: unknown stage '" + s + "' (stages: sim, surface, render)");
+        }
+    }
+}
+
+bool wants(const std::vector<std::string>& stages, const std::string& stage) {
+    return std::find(stages.begin(), stages.end(), stage) != stages.end();
+}
+
+}  // namespace
+
+const char* defaultSceneText() { return kDefaultSceneToml; }
+
+void runScene(const RunOptions& options, Reporter& reporter) {
+    checkStages(options.stages);
+    Scene scene = options.scene.empty()
+                      ? parseScene(kDefaultSceneToml, "<default scene>", options.overrides, reporter)
+                      : loadScene(options.scene, options.overrides, reporter);
+    const std::string name =
+        options.scene.empty() ? "default" : fs::path(options.scene).stem().string();
+    const fs::path outDir = options.outDir.empty() ? fs::path("out") / name : options.outDir;
+    const FrameRange range = parseFrames(options.frames, int(scene.simulation.frames));
+    if (options.threads < 0) throw SceneError("--threads must be at least 1 (0 = all cores)");
+
+    std::unique_ptr<tbb::global_control> threadLimit;
+    if (options.threads > 0) {
+        threadLimit = std::make_unique<tbb::global_control>(
+            tbb::global_control::max_allowed_parallelism, std::size_t(options.threads));
+    }
+    ensureWritableDirectory(outDir);
+    const std::string resolved = resolvedSceneToml(scene);
+
+    StageContext ctx{outDir, range.first, range.last, &reporter};
+    const auto started = std::chrono::steady_clock::now();
+    if (wants(options.stages, "sim")) {
+        // The simulation always starts at frame 1: later frames depend on earlier ones.
+        writeFileAtomically(outDir / "scene.toml", resolved);
+        SimStageOptions simOptions{scene.output, options.resume, fingerprint(resolved)};
+        StageContext simCtx = ctx;
+        simCtx.firstFrame = 1;
+        reporter.info("sim: " + std::to_string(range.last) + " frames into " + outDir.string());
+        runSimStage(scene.simulationSetup(), simOptions, simCtx);
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    reporter.info("done in " + std::to_string(seconds) + " s: " + outDir.string());
+}
+
+}  // namespace globular

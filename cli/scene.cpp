@@ -1,0 +1,96 @@
+#include "scene.h"
+
+#include <utility>
+
+#include "settings_schema.h"
+
+namespace globular {
+
+namespace {
+
+template <typename Settings>
+SettingsSection describeSection(const std::string& name, Settings& settings) {
+    SettingsSection section(name);
+    settings.describe(section);
+    return section;
+}
+
+template <typename Settings>
+std::vector<SettingsSection> describeArray(const std::string& name,
+                                           std::vector<Settings>& elements) {
+    std::vector<SettingsSection> sections;
+    for (std::size_t i = 0; i < elements.size(); ++i) {
+        sections.push_back(describeSection(name + "[" + std::to_string(i) + "]", elements[i]));
+    }
+    return sections;
+}
+
+std::size_t sizeOr(const std::vector<std::pair<std::string, std::size_t>>& sizes,
+                   const std::string& name, std::size_t fallback) {
+    for (const auto& [n, size] : sizes) {
+        if (n == name) return size;
+    }
+    return fallback;
+}
+
+}  // namespace
+
+std::filesystem::path Scene::directory() const {
+    return file.empty() ? std::filesystem::current_path() : file.parent_path();
+}
+
+SimulationSetup Scene::simulationSetup() const {
+    return SimulationSetup{simulation, material, ground, emitters, directory()};
+}
+
+const SettingsSection* SceneSections::single(const std::string& name) const {
+    for (const auto& s : singles) {
+        if (s.name() == name) return &s;
+    }
+    return nullptr;
+}
+
+SettingsSection* SceneSections::single(const std::string& name) {
+    return const_cast<SettingsSection*>(std::as_const(*this).single(name));
+}
+
+const std::vector<SettingsSection>* SceneSections::array(const std::string& name) const {
+    for (const auto& [n, sections] : arrays) {
+        if (n == name) return &sections;
+    }
+    return nullptr;
+}
+
+std::vector<SettingsSection>* SceneSections::array(const std::string& name) {
+    return const_cast<std::vector<SettingsSection>*>(std::as_const(*this).array(name));
+}
+
+std::vector<std::string> SceneSections::names() const {
+    std::vector<std::string> out;
+    for (const auto& s : singles) out.push_back(s.name());
+    for (const auto& [n, sections] : arrays) out.push_back(n);
+    return out;
+}
+
+SceneSections bindSections(Scene& scene,
+                           const std::vector<std::pair<std::string, std::size_t>>& arraySizes) {
+    scene.emitters.resize(sizeOr(arraySizes, "emitter", scene.emitters.empty() ? 1 : scene.emitters.size()));
+    SceneSections sections;
+    sections.singles.push_back(describeSection("simulation", scene.simulation));
+    sections.singles.push_back(describeSection("material", scene.material));
+    sections.singles.push_back(describeSection("ground", scene.ground));
+    sections.singles.push_back(describeSection("output", scene.output));
+    sections.arrays.emplace_back("emitter", describeArray("emitter", scene.emitters));
+    return sections;
+}
+
+void validateScene(const Scene& scene, const SceneSections& sections, Reporter& reporter) {
+    scene.simulation.validate(*sections.single("simulation"), reporter);
+    scene.material.validate(*sections.single("material"), reporter);
+    const auto& emitterSections = *sections.array("emitter");
+    for (std::size_t i = 0; i < scene.emitters.size(); ++i) {
+        scene.emitters[i].validate(emitterSections[i], reporter);
+    }
+}
+
+}  // namespace globular

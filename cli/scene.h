@@ -1,0 +1,69 @@
+#pragma once
+// A whole scene: every section of the TOML file (DESIGN.md), typed and defaulted. An
+// empty file is the paper's best liquid (Fig. 1): 400 globules in a helix, forward
+// Euler, dt = 0.001 s.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "emitter.h"
+#include "material.h"
+#include "simulation.h"
+#include "simulation_settings.h"
+
+namespace globular {
+
+class Reporter;
+class SettingsSection;
+
+struct Scene {
+    SimulationSettings simulation;
+    MaterialSettings material;
+    GroundSettings ground;
+    OutputSettings output;
+    std::vector<EmitterSettings> emitters;  ///< [[emitter]]; one helix when none is given
+
+    std::filesystem::path file;  ///< the scene file; empty for the built-in default
+    std::filesystem::path directory() const;  ///< relative paths resolve against it
+
+    SimulationSetup simulationSetup() const;
+};
+
+/// Parses a scene from TOML @p text. @p sourceName names it in messages (a path, or
+/// "<default scene>"). @p overrides are --set arguments "dotted.key=value", applied
+/// over the text: `material.b1=3`, `emitter.0.count=100`, `render.mode=surface`.
+/// Warnings (values outside the paper's recommended ranges) go to @p reporter.
+/// @throw SceneError naming file, line, column and key for every kind of bad input.
+Scene parseScene(const std::string& text, const std::string& sourceName,
+                 const std::vector<std::string>& overrides, Reporter& reporter);
+
+/// Reads and parses a scene file. @throw SceneError / IoError naming the file.
+Scene loadScene(const std::filesystem::path& file, const std::vector<std::string>& overrides,
+                Reporter& reporter);
+
+/// The resolved scene as TOML: every key of every section with its value, defaults
+/// included, so a run can be repeated from DIR/scene.toml alone.
+std::string resolvedSceneToml(const Scene& scene);
+
+/// The scene's sections bound to its fields (settings_schema.h), in file order.
+struct SceneSections {
+    std::vector<SettingsSection> singles;  ///< [simulation], [material], ...
+    std::vector<std::pair<std::string, std::vector<SettingsSection>>> arrays;  ///< [[emitter]]
+
+    SettingsSection* single(const std::string& name);
+    const SettingsSection* single(const std::string& name) const;
+    std::vector<SettingsSection>* array(const std::string& name);
+    const std::vector<SettingsSection>* array(const std::string& name) const;
+    std::vector<std::string> names() const;  ///< every section name, for suggestions
+};
+
+/// Binds sections to @p scene's fields. Array sections get @p arraySizes[name] elements
+/// (the scene's vectors are resized to match; missing names keep the defaults).
+SceneSections bindSections(Scene& scene,
+                           const std::vector<std::pair<std::string, std::size_t>>& arraySizes);
+
+/// Cross-field checks of every section. @throw SceneError naming file and key.
+void validateScene(const Scene& scene, const SceneSections& sections, Reporter& reporter);
+
+}  // namespace globular

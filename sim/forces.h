@@ -1,0 +1,58 @@
+#pragma once
+// Accelerations of every globule: the pair force of eq. (2) summed over neighbours,
+// plus gravity and the ground penalty of eq. (9). Forces are gathered per globule (each
+// pair is evaluated from both sides) so loops write only their own index: no locks, no
+// atomics, and the same sum order, hence bit-identical results, for any thread count.
+
+#include <vector>
+
+#include "globules.h"
+#include "neighbor_grid.h"
+#include "pair_force.h"
+#include "simulation_settings.h"
+
+namespace globular {
+
+struct Accelerations {
+    std::vector<float> x, y, z;  ///< world units / s^2
+    void resize(std::size_t n) {
+        x.resize(n);
+        y.resize(n);
+        z.resize(n);
+    }
+};
+
+struct ExternalForces {
+    Vec3 gravity{0, -9.8, 0};
+    GroundSettings ground;
+};
+
+/// Sum of pair forces on each globule over all others: the paper's O(N^2) reference.
+void pairForcesAllPairs(const Globules& globules, const PairForce& pair, Accelerations& forces);
+
+/// The same sums over cell-list neighbours only; @p grid is rebuilt from the positions.
+void pairForcesGrid(const Globules& globules, const PairForce& pair, NeighborGrid& grid,
+                    Accelerations& forces);
+
+/// The ground's penalty force of eq. (9) on one globule, y component (normal +y).
+float groundForce(const GroundSettings& ground, float y, float vy, float radius);
+
+/// Computes accelerations for a whole system; owns the neighbour grid between calls.
+class ForceField {
+public:
+    ForceField(PairForce pair, ExternalForces external, bool allPairs = false)
+        : mPair(pair), mExternal(external), mAllPairs(allPairs) {}
+
+    void compute(const Globules& globules, Accelerations& out);
+
+    const PairForce& pair() const { return mPair; }
+    const NeighborGrid& grid() const { return mGrid; }
+
+private:
+    PairForce mPair;
+    ExternalForces mExternal;
+    bool mAllPairs;
+    NeighborGrid mGrid;
+};
+
+}  // namespace globular

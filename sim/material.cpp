@@ -1,0 +1,57 @@
+#include "material.h"
+
+#include <cmath>
+
+#include "errors.h"
+#include "reporter.h"
+#include "settings_schema.h"
+
+namespace globular {
+
+void MaterialSettings::describe(SettingsSection& s) {
+    s.choice("preset", preset, {"powder", "liquid", "solid", "custom"},
+             "window constants of eq. (6)-(8); custom requires cr and cd");
+    s.number("r0", r0, NumberRange::positive(), "rest distance, world units");
+    s.number("b1", b1, NumberRange::positive(), "radial force strength (paper: [1, 3])");
+    s.number("m", m, NumberRange::positive(), "repulsion exponent (paper: m > n)");
+    s.number("n", n, NumberRange::positive(), "attraction exponent");
+    s.number("alpha", alpha, NumberRange::positive(), "liquid drag reach C_d = alpha r0");
+    s.number("cr", cr, NumberRange::nonNegative(),
+             "radial window C_r as a number (0 = from preset)");
+    s.number("cd", cd, NumberRange::nonNegative(),
+             "drag window C_d as a number (0 = from preset)");
+}
+
+double MaterialSettings::resolvedCr() const {
+    if (cr > 0) return cr;
+    return preset == "solid" ? 2.0 * r0 : r0;
+}
+
+double MaterialSettings::resolvedCd() const {
+    if (cd > 0) return cd;
+    if (preset == "solid") return 2.0 * r0;
+    if (preset == "liquid") return alpha * r0;
+    return r0;
+}
+
+void MaterialSettings::validate(const SettingsSection& s, Reporter& reporter) const {
+    if (preset == "custom" && (cr <= 0 || cd <= 0)) {
+        throw SceneError(s.describeKey("preset") +
+                         ": the custom preset needs both cr and cd set to positive numbers");
+    }
+    if (m <= n) {
+        reporter.warn(s.describeKey("m") + ": m = " + std::to_string(m) +
+                      " is not greater than n = " + std::to_string(n) +
+                      "; the paper recommends m > n (attraction then dominates at short range)");
+    }
+    if (b1 < 1.0 || b1 > 3.0) {
+        reporter.warn(s.describeKey("b1") + ": b1 = " + std::to_string(b1) +
+                      " is outside the paper's stable range [1, 3]");
+    }
+    if (preset == "liquid" && cd == 0 && (alpha < 1.5 || alpha > 2.0)) {
+        reporter.warn(s.describeKey("alpha") + ": alpha = " + std::to_string(alpha) +
+                      " is outside the paper's liquid range [1.5, 2]");
+    }
+}
+
+}  // namespace globular

@@ -1,0 +1,139 @@
+#include "simulation.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "errors.h"
+#include "reporter.h"
+
+namespace globular {
+
+namespace {
+
+constexpr int kMaxSubstepRefinement = 64;  // on_explosion = substep: up to 64x more steps
+
+std::string describeRunaway(const Globules& g, long i, double maxSpeed) {
+    std::ostringstream out;
+    const Vec3 p = g.position(std::size_t(i)), v = g.velocity(std::size_t(i));
+    if (!std::isfinite(p.x + p.y + p.z + v.x + v.y + v.z)) {
+        out << "globule " << g.id[std::size_t(i)] << " has a non-finite position or velocity";
+    } else {
+        out << "globule " << g.id[std::size_t(i)] << " moves at " << length(v)
+            << " units/s, above max_speed " << maxSpeed;
+    }
+    return out.str();
+}
+
+}  // namespace
+
+Simulation::Simulation(const SimulationSetup& setup)
+    : mSetup(setup),
+      mForces(PairForce::fromMaterial(setup.material),
+              ExternalForces{setup.simulation.gravity, setup.ground},
+              setup.simulation.neighbors == "all_pairs"),
+      mIntegrator(makeIntegrator(setup.simulation.integrator)) {
+    for (std::size_t k = 0; k < setup.emitters.size(); ++k) {
+        mEmitters.push_back(
+            makeEmitter(setup.emitters[k], uint64_t(setup.simulation.seed), k, setup.sceneDir));
+    }
+    std::size_t planned = plannedCount();
+    if (planned > std::size_t(INT32_MAX)) throw ResourceError("more than 2^31 globules requested");
+    mGlobules.reserve(planned);
+    for (auto& e : mEmitters) e->emit(0.0, mGlobules, mNextId);
+}
+
+std::size_t Simulation::plannedCount() const {
+    std::size_t total = 0;
+    for (const auto& e : mEmitters) total += e->total();
+    return total;
+}
+
+void Simulation::step(double dt) {
+    for (auto& e : mEmitters) e->emit(mTime, mGlobules, mNextId);
+    mIntegrator->step(mGlobules, float(dt),
+                      [this](const Globules& g, Accelerations& a) { mForces.compute(g, a); });
+    mTime += dt;
+    ++mSteps;
+}
+
+long Simulation::findRunaway() const {
+    const float limit2 = float(mSetup.simulation.maxSpeed * mSetup.simulation.maxSpeed);
+    const Globules& g = mGlobules;
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, g.size(), 4096), -1L,
+        [&](const tbb::blocked_range<std::size_t>& r, long found) {
+            for (std::size_t i = r.begin(); i != r.end() && found < 0; ++i) {
+                const float v2 = g.vx[i] * g.vx[i] + g.vy[i] * g.vy[i] + g.vz[i] * g.vz[i];
+                const float p = g.px[i] + g.py[i] + g.pz[i];
+                if (!(v2 <= limit2) || !std::isfinite(p)) found = long(i);
+            }
+            return found;
+        },
+        [](long a, long b) { return a < 0 ? b : (b < 0 ? a : std::min(a, b)); });
+}
+
+void Simulation::advanceFrame(int frame, Reporter& reporter) {
+    const SimulationSettings& sim = mSetup.simulation;
+    const int64_t baseSteps = sim.substepsPerFrame();
+    const double frameStart = mTime;
+    const double frameEnd = double(frame - 1) / sim.fps;
+    const bool retry = sim.onExplosion == "substep";
+    SimulationState saved;
+    if (retry) saved = saveState();
+    for (int refine = 1;; refine *= 2) {
+        const int64_t steps = baseSteps * refine;
+        const double dt = (frameEnd - frameStart) / double(steps);
+        long runaway = -1;
+        int64_t s = 0;
+        for (; s < steps && runaway < 0; ++s) {
+            step(dt);
+            runaway = findRunaway();
+        }
+        if (runaway < 0) {
+            mTime = frameEnd;  // no drift from summing dt
+            return;
+        }
+        std::ostringstream why;
+        why << "simulation exploded at frame " << frame << ", step " << s << " of " << steps
+            << " (t = " << mTime << " s): " << describeRunaway(mGlobules, runaway, sim.maxSpeed)
+            << ". The step dt = " << dt
+            << " s is likely too large for these material parameters";
+        if (!retry || refine >= kMaxSubstepRefinement) {
+            why << "; try dt = " << dt / 4
+                << (retry ? "" : " or set simulation.on_explosion = \"substep\"");
+            throw SimulationError(why.str());
+        }
+        reporter.warn(why.str() + "; retrying the frame with " + std::to_string(steps * 2) +
+                      " steps");
+        restoreState(saved);
+    }
+}
+
+SimulationState Simulation::saveState() const {
+    SimulationState state;
+    state.globules = mGlobules;
+    state.time = mTime;
+    state.steps = mSteps;
+    state.nextId = mNextId;
+    for (const auto& e : mEmitters) state.emitted.push_back(e->emitted());
+    if (auto* carried = mIntegrator->carriedState()) state.carried = *carried;
+    return state;
+}
+
+void Simulation::restoreState(const SimulationState& state) {
+    if (state.emitted.size() != mEmitters.size()) {
+        throw Error("saved state has " + std::to_string(state.emitted.size()) +
+                    " emitters, the scene " + std::to_string(mEmitters.size()));
+    }
+    mGlobules = state.globules;
+    mTime = state.time;
+    mSteps = state.steps;
+    mNextId = state.nextId;
+    for (std::size_t k = 0; k < mEmitters.size(); ++k) mEmitters[k]->skipTo(state.emitted[k]);
+    if (auto* carried = mIntegrator->carriedState()) *carried = state.carried;
+}
+
+}  // namespace globular
