@@ -53,7 +53,8 @@ void EmitterSettings::describe(SettingsSection& s) {
     s.vec3("max", max, NumberRange::any(), "box upper corner, world units");
     s.vec3("direction", direction, NumberRange::any(), "spout pour direction");
     s.number("speed", speed, NumberRange::positive(), "spout exit speed, units / s");
-    s.number("rate", rate, NumberRange::positive(), "spout globules per second");
+    s.number("rate", rate, NumberRange::nonNegative(),
+             "spout globules per second (0 = as fast as the nozzle allows)");
     s.number("nozzle_radius", nozzleRadius, NumberRange::nonNegative(),
              "spout nozzle radius, world units");
     s.number("start", start, NumberRange::nonNegative(), "spout start time, seconds");

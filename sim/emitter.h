@@ -35,7 +35,7 @@ struct EmitterSettings {
     // spout
     Vec3 direction{0, -1, 0};    ///< pour direction (normalised)
     double speed = 5.0;          ///< exit speed, units / s
-    double rate = 400.0;         ///< globules per second
+    double rate = 0.0;           ///< globules per second; 0 = a layer every spacing/speed
     double nozzleRadius = 1.5;   ///< world units
     double start = 0.0;          ///< seconds after the start of the simulation
     // points

@@ -104,7 +104,7 @@ public:
                 }
             }
         }
-        mInterval = double(mPattern.size()) / s.rate;
+        mInterval = s.rate > 0 ? double(mPattern.size()) / s.rate : s.spacing / s.speed;
         if (s.speed * mInterval < 0.9 * s.spacing) {
             throw SceneError(
                 "spout emitter: rate " + std::to_string(s.rate) + " /s at speed " +
