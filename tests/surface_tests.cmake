@@ -1,1 +1,5 @@
 # Tests of globular_surface.
+globular_test(surface_tests
+    SOURCES surface_kernel_test.cpp
+            surface_settings_test.cpp
+    LIBS globular_surface)
