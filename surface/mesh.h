@@ -1,0 +1,46 @@
+#pragma once
+// A triangle mesh as plain arrays, and its files. OpenVDB-free: the render stage reads
+// the surface meshes through this header without pulling in OpenVDB.
+//
+// PLY files are binary little endian with vertex properties x y z nx ny nz (float) and
+// faces as "list uchar int vertex_indices": what Blender, Houdini and MeshLab import.
+// OBJ files are text with v, vn and f a//a b//b c//c lines (indices from 1).
+// Triangles wind counter-clockwise seen from outside: (b - a) x (c - a) points outward,
+// along the vertex normals.
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace globular {
+
+struct TriangleMesh {
+    std::vector<float> positions;     ///< x y z per vertex, world units
+    std::vector<float> normals;       ///< unit x y z per vertex (same count as positions)
+    std::vector<uint32_t> triangles;  ///< 3 vertex indices per triangle
+
+    std::size_t vertexCount() const { return positions.size() / 3; }
+    std::size_t triangleCount() const { return triangles.size() / 3; }
+    bool empty() const { return triangles.empty(); }
+};
+
+/// Writes @p mesh as binary little-endian PLY, atomically.
+/// @throw IoError naming @p path.
+void writeMeshPly(const std::filesystem::path& path, const TriangleMesh& mesh);
+
+/// Writes @p mesh as Wavefront OBJ text, atomically.
+/// @throw IoError naming @p path.
+void writeMeshObj(const std::filesystem::path& path, const TriangleMesh& mesh);
+
+/// Reads a PLY mesh: ascii, binary little or big endian; vertex x y z required, nx ny nz
+/// optional (area-weighted normals are computed when absent); faces as a list property
+/// "vertex_indices" (or "vertex_index"), polygons split into fans. Other elements and
+/// properties are skipped.
+/// @throw IoError naming @p path and what is wrong (not PLY, truncated, bad index, ...).
+TriangleMesh readMeshPly(const std::filesystem::path& path);
+
+/// Sets @p mesh.normals to the normalised, area-weighted sum of the face normals around
+/// each vertex (a vertex on no face gets (0, 0, 0)).
+void computeAreaWeightedNormals(TriangleMesh& mesh);
+
+}  // namespace globular
