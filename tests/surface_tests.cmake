@@ -1,6 +1,11 @@
-# Tests of globular_surface.
+# Tests of globular_surface. surface_tests stays OpenVDB-free (fast to compile);
+# surface_vdb_tests includes OpenVDB to inspect grids and files.
 globular_test(surface_tests
     SOURCES surface_kernel_test.cpp
             surface_settings_test.cpp
             surface_mesh_test.cpp
+            surface_frame_test.cpp
     LIBS globular_surface)
+globular_test(surface_vdb_tests
+    SOURCES surface_vdb_test.cpp
+    LIBS globular_surface OpenVDB::openvdb)

@@ -1,0 +1,98 @@
+// Meshing a level set: volumeToMesh, quads split into triangles, gradient normals.
+#include <openvdb/tools/Interpolation.h>
+#include <openvdb/tools/VolumeToMesh.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+#include "surface_grids.h"
+
+namespace globular {
+
+namespace {
+
+using openvdb::FloatGrid;
+using openvdb::Vec3s;
+
+float distanceSquared(const Vec3s& a, const Vec3s& b) { return (a - b).lengthSqr(); }
+
+/// Appends triangle (a, b, c) wound outward: volumeToMesh emits polygons whose right-hand
+/// normal points into the level set's negative side, so the order is reversed here.
+void appendOutward(std::vector<uint32_t>& out, uint32_t a, uint32_t b, uint32_t c) {
+    out.insert(out.end(), {a, c, b});
+}
+
+}  // namespace
+
+TriangleMesh meshLevelSet(const FloatGrid& levelSet, double adaptivity) {
+    TriangleMesh mesh;
+    std::vector<Vec3s> points;
+    std::vector<openvdb::Vec3I> triangles;
+    std::vector<openvdb::Vec4I> quads;
+    openvdb::tools::volumeToMesh(levelSet, points, triangles, quads, 0.0, adaptivity, true);
+    if (points.empty()) return mesh;
+
+    mesh.positions.resize(3 * points.size());
+    for (std::size_t v = 0; v < points.size(); ++v) {
+        for (int k = 0; k < 3; ++k) mesh.positions[3 * v + k] = points[v][k];
+    }
+    mesh.triangles.reserve(3 * triangles.size() + 6 * quads.size());
+    for (const auto& t : triangles) appendOutward(mesh.triangles, t[0], t[1], t[2]);
+    for (const auto& q : quads) {
+        // The shorter diagonal gives the better-shaped pair of triangles.
+        if (distanceSquared(points[q[0]], points[q[2]]) <=
+            distanceSquared(points[q[1]], points[q[3]])) {
+            appendOutward(mesh.triangles, q[0], q[1], q[2]);
+            appendOutward(mesh.triangles, q[0], q[2], q[3]);
+        } else {
+            appendOutward(mesh.triangles, q[0], q[1], q[3]);
+            appendOutward(mesh.triangles, q[1], q[2], q[3]);
+        }
+    }
+
+    // Normals: central differences of the trilinearly interpolated level set half a voxel
+    // either side of each vertex. Smooth across polygons, and outward because the level
+    // set grows outward.
+    mesh.normals.resize(mesh.positions.size());
+    const auto& xform = levelSet.transform();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024), [&](auto range) {
+        auto accessor = levelSet.getConstAccessor();
+        openvdb::tools::GridSampler<FloatGrid::ConstAccessor, openvdb::tools::BoxSampler> sample(
+            accessor, xform);
+        for (std::size_t v = range.begin(); v < range.end(); ++v) {
+            const openvdb::Vec3d p = xform.worldToIndex(openvdb::Vec3d(points[v]));
+            openvdb::Vec3d g;
+            for (int k = 0; k < 3; ++k) {
+                openvdb::Vec3d step(0.0);
+                step[k] = 0.5;
+                g[k] = sample.isSample(p + step) - sample.isSample(p - step);
+            }
+            const double length = g.length();
+            float* n = &mesh.normals[3 * v];
+            if (length > 0) {
+                for (int k = 0; k < 3; ++k) n[k] = float(g[k] / length);
+            } else {
+                n[0] = n[1] = n[2] = 0.0f;
+            }
+        }
+    });
+    // A flat gradient (a surface thinner than a voxel) leaves no direction: fall back to
+    // the faces around such vertices.
+    bool flat = false;
+    for (std::size_t v = 0; v < points.size() && !flat; ++v) {
+        flat = mesh.normals[3 * v] == 0 && mesh.normals[3 * v + 1] == 0 &&
+               mesh.normals[3 * v + 2] == 0;
+    }
+    if (flat) {
+        TriangleMesh faces{mesh.positions, {}, mesh.triangles};
+        computeAreaWeightedNormals(faces);
+        for (std::size_t i = 0; i < mesh.normals.size(); i += 3) {
+            if (mesh.normals[i] == 0 && mesh.normals[i + 1] == 0 && mesh.normals[i + 2] == 0) {
+                for (int k = 0; k < 3; ++k) mesh.normals[i + k] = faces.normals[i + k];
+            }
+        }
+    }
+    return mesh;
+}
+
+}  // namespace globular

@@ -1,0 +1,78 @@
+// Level-set steps of surfacing: rebuild from the metaball field, filters, droplet removal
+// and the fog volume. The heaviest OpenVDB templates live here, in one translation unit.
+#include <openvdb/tools/Composite.h>
+#include <openvdb/tools/LevelSetFilter.h>
+#include <openvdb/tools/LevelSetMeasure.h>
+#include <openvdb/tools/LevelSetRebuild.h>
+#include <openvdb/tools/LevelSetUtil.h>
+
+#include "surface_grids.h"
+
+namespace globular {
+
+using openvdb::FloatGrid;
+
+FloatGrid::Ptr fieldToLevelSet(const FloatGrid& field, double isoValue, double bandWidth) {
+    // levelSetRebuild meshes the iso surface and re-voxelises it with signs from a flood
+    // fill of the exterior, so it works on a density-like field (larger inside) as well as
+    // on a distance field.
+    FloatGrid::Ptr levelSet = openvdb::tools::levelSetRebuild(field, float(isoValue),
+                                                               float(bandWidth), float(bandWidth));
+    levelSet->setGridClass(openvdb::GRID_LEVEL_SET);
+    levelSet->setName("surface");
+    return levelSet;
+}
+
+void applyFilters(FloatGrid& levelSet, const std::vector<FilterStep>& chain) {
+    if (chain.empty() || levelSet.tree().leafCount() == 0) return;
+    openvdb::tools::LevelSetFilter<FloatGrid> filter(levelSet);
+    const double voxel = levelSet.voxelSize()[0];
+    for (const FilterStep& step : chain) {
+        const int count = int(step.amount);
+        switch (step.kind) {
+            case FilterKind::Gaussian: filter.gaussian(count); break;
+            case FilterKind::MeanCurvature:
+                for (int i = 0; i < count; ++i) filter.meanCurvature();
+                break;
+            case FilterKind::Laplacian:
+                for (int i = 0; i < count; ++i) filter.laplacian();
+                break;
+            // offset() adds to the distance: negative moves the surface outward. It
+            // advances in half-voxel steps with renormalisation, so any distance is safe.
+            case FilterKind::Dilate: filter.offset(float(-step.amount * voxel)); break;
+            case FilterKind::Erode: filter.offset(float(step.amount * voxel)); break;
+        }
+    }
+}
+
+std::size_t removeDroplets(FloatGrid::Ptr& levelSet, double minVolume) {
+    if (minVolume <= 0 || levelSet->tree().leafCount() == 0) return 0;
+    std::vector<FloatGrid::Ptr> pieces;
+    openvdb::tools::segmentSDF(*levelSet, pieces);
+    std::vector<FloatGrid::Ptr> kept;
+    for (auto& piece : pieces) {
+        if (openvdb::tools::levelSetVolume(*piece, true) >= minVolume) kept.push_back(piece);
+    }
+    const std::size_t removed = pieces.size() - kept.size();
+    if (removed == 0) return 0;
+
+    // The pieces are disjoint surfaces: their union (minimum of distances) is the level set
+    // without the droplets.
+    FloatGrid::Ptr result = FloatGrid::create(levelSet->background());
+    result->setTransform(levelSet->transform().copy());
+    result->setGridClass(openvdb::GRID_LEVEL_SET);
+    result->setName(levelSet->getName());
+    for (auto& piece : kept) openvdb::tools::csgUnion(*result, *piece);
+    levelSet = result;
+    return removed;
+}
+
+FloatGrid::Ptr levelSetToFog(const FloatGrid& levelSet) {
+    FloatGrid::Ptr fog = levelSet.deepCopy();
+    openvdb::tools::sdfToFogVolume(*fog);
+    fog->setGridClass(openvdb::GRID_FOG_VOLUME);
+    fog->setName("density");
+    return fog;
+}
+
+}  // namespace globular

@@ -1,0 +1,84 @@
+#include "surface_estimate.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "globule_bins.h"
+
+namespace globular {
+
+namespace {
+
+// One dense 8^3 float leaf: 2 KiB of values, 64 bytes of mask, origin and bookkeeping.
+constexpr uint64_t kBytesPerLeaf = 2048 + 64 + 64;
+// Peak over the stage's steps: the field, plus the level set, the rebuild's temporaries
+// (its mesh and two topology-sized grids) alive at once. Measured on the benchmark frames
+// (peak RSS / field leaves / kBytesPerLeaf): see docs/surface.md.
+constexpr double kPeakFactor = 3.0;
+// Per globule: the Globules arrays (40 bytes) and the bins (centre, radius, key, order).
+constexpr uint64_t kBytesPerGlobule = 40 + 24 + 4 + 8 + 4;
+
+uint64_t readNumberAfter(const std::string& file, const std::string& label) {
+    std::ifstream in(file);
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind(label, 0) == 0) {
+            std::istringstream rest(line.substr(label.size()));
+            uint64_t value = 0;
+            if (rest >> value) return value;
+        }
+    }
+    return 0;
+}
+
+uint64_t readSingleNumber(const std::string& file) {
+    std::ifstream in(file);
+    uint64_t value = 0;
+    if (in >> value) return value;  // "max" (no limit) fails to parse: 0
+    return 0;
+}
+
+}  // namespace
+
+SurfaceEstimate estimateSurface(const Globules& globules, const SurfaceSettings& settings) {
+    SurfaceEstimate e;
+    e.voxelSize = resolveVoxelSize(settings, globules);
+    e.globules = globules.size();
+    const GlobuleBins bins(globules, e.voxelSize, settings.influence);
+    e.fieldLeaves = bins.candidateBlocks().size();
+    e.voxels = uint64_t(e.fieldLeaves) * GlobuleBins::kBlockDim * GlobuleBins::kBlockDim *
+               GlobuleBins::kBlockDim;
+    e.bytes = uint64_t(double(e.fieldLeaves * kBytesPerLeaf) * kPeakFactor) +
+              uint64_t(e.globules) * kBytesPerGlobule;
+    return e;
+}
+
+uint64_t availableMemoryBytes() {
+    uint64_t available = readNumberAfter("/proc/meminfo", "MemAvailable:") * 1024;
+    const uint64_t limit = readSingleNumber("/sys/fs/cgroup/memory.max");
+    if (limit > 0) {
+        const uint64_t used = readSingleNumber("/sys/fs/cgroup/memory.current");
+        const uint64_t headroom = limit > used ? limit - used : 0;
+        if (available == 0 || headroom < available) available = headroom;
+    }
+    return available;
+}
+
+std::string formatBytes(uint64_t bytes) {
+    std::ostringstream out;
+    out.setf(std::ios::fixed);
+    out.precision(2);
+    const double b = double(bytes);
+    if (b >= 1024.0 * 1024 * 1024) {
+        out << b / (1024.0 * 1024 * 1024) << " GiB";
+    } else if (b >= 1024.0 * 1024) {
+        out.precision(1);
+        out << b / (1024.0 * 1024) << " MiB";
+    } else {
+        out.precision(1);
+        out << b / 1024.0 << " KiB";
+    }
+    return out.str();
+}
+
+}  // namespace globular

@@ -1,0 +1,43 @@
+#pragma once
+// Surfacing one frame as a pure function: globules + settings -> grids + mesh. OpenVDB-free:
+// the grids are behind an opaque pointer (their type is in surface_grids.h, which
+// includes OpenVDB), so the CLI and the render stage can call this cheaply.
+// \see splashsurf (Löschner et al.): surfacing as a pure function, exporters apart.
+
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+
+#include "globules.h"
+#include "mesh.h"
+#include "surface_settings.h"
+
+namespace globular {
+
+struct SurfaceGrids;  // surface_grids.h: the OpenVDB level set and fog volume
+
+struct SurfaceFrame {
+    std::shared_ptr<SurfaceGrids> grids;  ///< "surface" level set and "density" fog
+    TriangleMesh mesh;                    ///< the level set's zero crossing
+    double voxelSize = 0;                 ///< world units, as resolved for this frame
+    std::size_t fieldLeaves = 0;          ///< 8^3-voxel leaves the metaball field used
+    std::size_t dropletsRemoved = 0;      ///< pieces below droplet_volume
+};
+
+/// Splats, rebuilds, filters, removes droplets, makes the fog volume and meshes.
+/// Uses TBB inside (limit threads with a tbb::task_arena); the result does not depend on
+/// the thread count.
+/// @throw SceneError when @p settings are invalid; SimulationError for a non-finite
+///        globule; ResourceError for a globule beyond the grid's coordinate range.
+SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& settings);
+
+/// Writes the grids "surface" and "density" of @p frame to one VDB file, atomically.
+/// @throw IoError naming @p path.
+void writeSurfaceVdb(const std::filesystem::path& path, const SurfaceFrame& frame);
+
+/// Writes the mesh as @p format ("ply" or "obj"), atomically.
+/// @throw IoError naming @p path.
+void writeSurfaceMesh(const std::filesystem::path& path, const TriangleMesh& mesh,
+                      const std::string& format);
+
+}  // namespace globular

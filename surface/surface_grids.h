@@ -1,0 +1,62 @@
+#pragma once
+// The OpenVDB steps of surfacing, one free function each, for surface_frame.cpp and the
+// tests. THIS HEADER INCLUDES OPENVDB (about a minute of compile time per translation
+// unit on two cores): include it only from surface/*.cpp files that need grids and from
+// tests; everything else goes through the OpenVDB-free surface_frame.h.
+//
+//   globules --splatMetaballs--> field --fieldToLevelSet--> level set --applyFilters-->
+//   --removeDroplets--> level set "surface" --levelSetToFog--> fog "density"
+//                                           --meshLevelSet---> TriangleMesh
+
+#include <openvdb/openvdb.h>
+
+#include <cstddef>
+#include <vector>
+
+#include "filter_chain.h"
+#include "globules.h"
+#include "mesh.h"
+#include "metaball_kernel.h"
+
+namespace globular {
+
+/// What a frame's surface VDB holds.
+struct SurfaceGrids {
+    openvdb::FloatGrid::Ptr surface;  ///< narrow-band level set, class "level set"
+    openvdb::FloatGrid::Ptr density;  ///< fog volume in [0, 1], class "fog volume"
+};
+
+/// The metaball field: the sum over globules of kernel(r^2 / R^2), R = influence * radius.
+/// Only voxels within some globule's influence sphere are active (value > 0); the
+/// background is 0. Parallel over leaves, each leaf gathering its globules in a fixed
+/// order, so the result is bit-identical for any thread count.
+/// @param voxelSize world units, > 0; the transform is linear with voxel centres at
+///        integer multiples of it.
+/// @throw SimulationError / ResourceError from GlobuleBins (non-finite or far globules).
+openvdb::FloatGrid::Ptr splatMetaballs(const Globules& globules, const MetaballKernel& kernel,
+                                       double influence, double voxelSize);
+
+/// The narrow-band level set (negative inside) of the field's @p isoValue surface, via
+/// openvdb::tools::levelSetRebuild; named "surface", class level set.
+/// @param bandWidth half width of the band, voxels.
+openvdb::FloatGrid::Ptr fieldToLevelSet(const openvdb::FloatGrid& field, double isoValue,
+                                        double bandWidth);
+
+/// Applies @p chain in order (openvdb::tools::LevelSetFilter); amounts in voxels.
+void applyFilters(openvdb::FloatGrid& levelSet, const std::vector<FilterStep>& chain);
+
+/// Removes the disconnected pieces of @p levelSet that enclose less than @p minVolume
+/// (world units^3).
+/// @return the number of pieces removed.
+std::size_t removeDroplets(openvdb::FloatGrid::Ptr& levelSet, double minVolume);
+
+/// A fog volume of @p levelSet: 1 inside, 0 outside, a linear ramp across the inner half
+/// of the narrow band (openvdb::tools::sdfToFogVolume); named "density".
+openvdb::FloatGrid::Ptr levelSetToFog(const openvdb::FloatGrid& levelSet);
+
+/// The zero crossing of @p levelSet as triangles (volumeToMesh quads split along their
+/// shorter diagonal), wound outward, with unit normals from the level set's gradient.
+/// @param adaptivity in [0, 1]: 0 uniform, higher merges polygons on flat parts.
+TriangleMesh meshLevelSet(const openvdb::FloatGrid& levelSet, double adaptivity);
+
+}  // namespace globular

@@ -1,0 +1,174 @@
+// The OpenVDB side of surfacing: the metaball field's values, the written VDB file as
+// OpenVDB and vdb_print see it, and grid determinism across thread counts.
+#include <gtest/gtest.h>
+#include <openvdb/io/File.h>
+#include <tbb/task_arena.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+
+#include "globule_bins.h"
+#include "surface_estimate.h"
+#include "surface_frame.h"
+#include "surface_grids.h"
+
+namespace globular {
+namespace {
+
+namespace fs = std::filesystem;
+
+Globules someGlobules(int count, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-2.0, 2.0);
+    Globules g;
+    for (int i = 0; i < count; ++i) g.add({u(rng), u(rng), u(rng)}, {0, 0, 0}, 0.8f, 1, i);
+    return g;
+}
+
+std::string run(const std::string& command) {
+    std::string out;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return out;
+    std::array<char, 4096> buffer;
+    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) out.append(buffer.data(), n);
+    pclose(pipe);
+    return out;
+}
+
+void expectSameGrid(const openvdb::FloatGrid& a, const openvdb::FloatGrid& b) {
+    EXPECT_EQ(a.activeVoxelCount(), b.activeVoxelCount());
+    EXPECT_EQ(a.tree().leafCount(), b.tree().leafCount());
+    auto other = b.getConstAccessor();
+    std::size_t differing = 0;
+    for (auto it = a.cbeginValueAll(); it; ++it) {
+        if (other.getValue(it.getCoord()) != *it || other.isValueOn(it.getCoord()) != it.isValueOn()) {
+            ++differing;
+        }
+    }
+    EXPECT_EQ(differing, 0u);
+}
+
+TEST(MetaballSplat, FieldIsTheKernelSumOverExactlyTheInfluenceSpheres) {
+    openvdb::initialize();
+    const double h = 0.25;
+    Globules g;
+    g.add({1.0, 1.0, 1.0}, {0, 0, 0}, 1.0f, 1, 0);  // on voxel (4, 4, 4)
+    g.add({2.0, 1.0, 1.0}, {0, 0, 0}, 0.5f, 1, 1);  // on voxel (8, 4, 4), R = 1
+    const MetaballKernel kernel{KernelType::Wyvill};
+    const auto field = splatMetaballs(g, kernel, 2.0, h);
+    auto acc = field->getConstAccessor();
+    auto c = [&](double r2, double R) { return kernel.value(float(r2 / (R * R))); };
+    // Voxel (4,4,4): 1 from the first, the second is 1.0 away with R = 1: nothing.
+    EXPECT_FLOAT_EQ(acc.getValue({4, 4, 4}), 1.0f);
+    // Voxel (6,4,4): 0.5 from the first (R = 2), 0.5 from the second (R = 1).
+    EXPECT_FLOAT_EQ(acc.getValue({6, 4, 4}), c(0.25, 2.0) + c(0.25, 1.0));
+    // Voxel (4,7,5): offsets (0, 0.75, 0.25) from the first only.
+    EXPECT_FLOAT_EQ(acc.getValue({4, 7, 5}), c(0.625, 2.0));
+    // Just inside and outside the first's influence sphere (8 voxels).
+    EXPECT_TRUE(acc.isValueOn({4, 4, -3}));
+    EXPECT_FALSE(acc.isValueOn({4, 4, -4}));
+    EXPECT_EQ(acc.getValue({4, 4, -4}), 0.0f);
+    EXPECT_FALSE(acc.isValueOn({4 + 6, 4 + 6, 4}));  // sqrt(72) > 8
+
+    // Every active voxel lies within some influence sphere, and every leaf is one the
+    // memory estimate counted.
+    std::size_t outside = 0;
+    for (auto it = field->cbeginValueOn(); it; ++it) {
+        const auto p = it.getCoord();
+        const double d1 = (p.asVec3d() - openvdb::Vec3d(4, 4, 4)).length();
+        const double d2 = (p.asVec3d() - openvdb::Vec3d(8, 4, 4)).length();
+        if (d1 >= 8 && d2 >= 4) ++outside;
+    }
+    EXPECT_EQ(outside, 0u);
+    const GlobuleBins bins(g, h, 2.0);
+    const auto& blocks = bins.candidateBlocks();
+    for (auto leaf = field->tree().cbeginLeaf(); leaf; ++leaf) {
+        const auto o = leaf->origin();
+        EXPECT_TRUE(std::binary_search(blocks.begin(), blocks.end(),
+                                       GlobuleBins::pack(o.x() >> 3, o.y() >> 3, o.z() >> 3)));
+    }
+    SurfaceSettings s;
+    s.voxelSize = h;
+    EXPECT_GE(estimateSurface(g, s).fieldLeaves, field->tree().leafCount());
+}
+
+TEST(SurfaceVdb, FileHoldsTheDocumentedGrids) {
+    openvdb::initialize();
+    SurfaceSettings s;
+    s.voxelSize = 0.1;
+    Globules g = someGlobules(30, 11);
+    g.add({0, 0, 0}, {0, 0, 0}, 1.0f, 1, 30);  // so the origin is deep inside
+    const SurfaceFrame frame = surfaceGlobules(g, s);
+    const fs::path path = fs::temp_directory_path() / "globular_surface_vdb_test" / "s.0001.vdb";
+    writeSurfaceVdb(path, frame);
+
+    openvdb::io::File file(path.string());
+    file.open();
+    const auto surface = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid("surface"));
+    const auto density = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid("density"));
+    file.close();
+    ASSERT_TRUE(surface && density);
+    EXPECT_EQ(surface->getGridClass(), openvdb::GRID_LEVEL_SET);
+    EXPECT_EQ(density->getGridClass(), openvdb::GRID_FOG_VOLUME);
+    EXPECT_EQ(surface->voxelSize(), openvdb::Vec3d(0.1));
+    EXPECT_EQ(density->voxelSize(), openvdb::Vec3d(0.1));
+    EXPECT_FLOAT_EQ(surface->background(), 3.0f * 0.1f);  // band_width voxels, world units
+    EXPECT_EQ(surface->metaValue<std::string>("globular_kernel"), "wyvill");
+
+    float lo = 1, hi = 0;
+    for (auto it = density->cbeginValueAll(); it; ++it) {
+        lo = std::min(lo, *it);
+        hi = std::max(hi, *it);
+    }
+    EXPECT_GE(lo, 0.0f);
+    EXPECT_LE(hi, 1.0f);
+    EXPECT_EQ(hi, 1.0f);  // the interior
+    // Inside (deep in the blob) and far outside, both grids agree.
+    auto ls = surface->getConstAccessor();
+    auto fog = density->getConstAccessor();
+    const auto centreIndex = surface->transform().worldToIndexNodeCentered({0, 0, 0});
+    EXPECT_LT(ls.getValue(centreIndex), 0.0f);
+    EXPECT_EQ(fog.getValue(centreIndex), 1.0f);
+    EXPECT_GT(ls.getValue({1000, 0, 0}), 0.0f);
+    EXPECT_EQ(fog.getValue({1000, 0, 0}), 0.0f);
+
+    // vdb_print (libopenvdb-tools) opens the file and lists both grids with their classes.
+    if (run("command -v vdb_print").empty()) GTEST_SKIP() << "vdb_print not installed";
+    const std::string printed = run("vdb_print -l -m " + path.string() + " 2>&1");
+    EXPECT_NE(printed.find("surface"), std::string::npos) << printed;
+    EXPECT_NE(printed.find("density"), std::string::npos) << printed;
+    EXPECT_NE(printed.find("level set"), std::string::npos) << printed;
+    EXPECT_NE(printed.find("fog volume"), std::string::npos) << printed;
+    EXPECT_NE(printed.find("voxel size: 0.1"), std::string::npos) << printed;
+}
+
+TEST(SurfaceVdb, GridsAreIdenticalForOneAndTwoThreads) {
+    SurfaceSettings s;
+    s.voxelSize = 0.08;
+    s.filters = "gaussian:1, dilate:1";
+    const Globules g = someGlobules(300, 5);
+    SurfaceFrame one, two;
+    tbb::task_arena(1).execute([&] { one = surfaceGlobules(g, s); });
+    tbb::task_arena(2).execute([&] { two = surfaceGlobules(g, s); });
+    const auto f1 = splatMetaballs(g, s.metaballKernel(), s.influence, s.voxelSize);
+    openvdb::FloatGrid::Ptr f2;
+    tbb::task_arena(2).execute(
+        [&] { f2 = splatMetaballs(g, s.metaballKernel(), s.influence, s.voxelSize); });
+    {
+        SCOPED_TRACE("field");
+        expectSameGrid(*f1, *f2);
+    }
+    {
+        SCOPED_TRACE("surface");
+        expectSameGrid(*one.grids->surface, *two.grids->surface);
+    }
+    {
+        SCOPED_TRACE("density");
+        expectSameGrid(*one.grids->density, *two.grids->density);
+    }
+}
+
+}  // namespace
+}  // namespace globular
