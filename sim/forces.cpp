@@ -21,6 +21,7 @@ inline void addPair(const Globules& g, const PairForce& pair, std::size_t i, std
 }
 
 float maxRadius(const Globules& g) {
+    if (g.empty()) return 1.0f;
     return tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, g.size(), 4096), 0.0f,
         [&](const tbb::blocked_range<std::size_t>& r, float m) {
@@ -49,12 +50,17 @@ void pairForcesAllPairs(const Globules& g, const PairForce& pair, Accelerations&
                       });
 }
 
+void buildGrid(const Globules& g, const PairForce& pair, NeighborGrid& grid) {
+    grid.build(g.px.data(), g.py.data(), g.pz.data(), g.size(),
+               pair.cutoff(2.0f * maxRadius(g)));
+}
+
 void pairForcesGrid(const Globules& g, const PairForce& pair, NeighborGrid& grid,
                     Accelerations& forces) {
     const std::size_t n = g.size();
     forces.resize(n);
     if (n == 0) return;
-    grid.build(g.px.data(), g.py.data(), g.pz.data(), n, pair.cutoff(2.0f * maxRadius(g)));
+    buildGrid(g, pair, grid);
     const std::vector<uint32_t>& order = grid.sortedOrder();
     // Visit globules in grid order so consecutive ones share neighbours in cache.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
@@ -77,6 +83,11 @@ float groundForce(const GroundSettings& ground, float y, float vy, float radius)
     const float depth = contactY - float(ground.height);  // (x_p - p_g) . N_g
     if (depth >= 0.0f) return 0.0f;
     return -float(ground.ks) * depth - float(ground.kd) * vy;
+}
+
+const std::vector<uint32_t>& ForceField::gridOrder(const Globules& globules) {
+    buildGrid(globules, mPair, mGrid);
+    return mGrid.sortedOrder();
 }
 
 void ForceField::compute(const Globules& g, Accelerations& out) {

@@ -34,6 +34,9 @@ void pairForcesAllPairs(const Globules& globules, const PairForce& pair, Acceler
 void pairForcesGrid(const Globules& globules, const PairForce& pair, NeighborGrid& grid,
                     Accelerations& forces);
 
+/// Builds @p grid over @p globules with cells one interaction cutoff wide.
+void buildGrid(const Globules& globules, const PairForce& pair, NeighborGrid& grid);
+
 /// The ground's penalty force of eq. (9) on one globule, y component (normal +y).
 float groundForce(const GroundSettings& ground, float y, float vy, float radius);
 
@@ -44,6 +47,9 @@ public:
         : mPair(pair), mExternal(external), mAllPairs(allPairs) {}
 
     void compute(const Globules& globules, Accelerations& out);
+
+    /// Rebuilds the neighbour grid for @p globules; @return their indices in grid order.
+    const std::vector<uint32_t>& gridOrder(const Globules& globules);
 
     const PairForce& pair() const { return mPair; }
     const NeighborGrid& grid() const { return mGrid; }
