@@ -15,6 +15,7 @@
 #include "sim_stage.h"
 #include "stage_context.h"
 #include "state_file.h"
+#include "surface_stage.h"
 
 namespace globular {
 
@@ -90,6 +91,11 @@ void runScene(const RunOptions& options, Reporter& reporter) {
         simCtx.firstFrame = 1;
         reporter.info("sim: " + std::to_string(range.last) + " frames into " + outDir.string());
         runSimStage(scene.simulationSetup(), simOptions, simCtx);
+    }
+    if (wants(options.stages, "surface")) {
+        reporter.info("surface: frames " + std::to_string(range.first) + "-" +
+                      std::to_string(range.last));
+        runSurfaceStage(scene.surface, ctx);
     }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -1,5 +1,6 @@
 #include "scene.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "settings_schema.h"
@@ -74,13 +75,19 @@ std::vector<std::string> SceneSections::names() const {
 
 SceneSections bindSections(Scene& scene,
                            const std::vector<std::pair<std::string, std::size_t>>& arraySizes) {
-    scene.emitters.resize(sizeOr(arraySizes, "emitter", scene.emitters.empty() ? 1 : scene.emitters.size()));
+    // An absent array keeps what the scene has: one default element when it has none.
+    scene.emitters.resize(sizeOr(arraySizes, "emitter", std::max<std::size_t>(1, scene.emitters.size())));
+    scene.lights.resize(sizeOr(arraySizes, "light", std::max<std::size_t>(1, scene.lights.size())));
     SceneSections sections;
     sections.singles.push_back(describeSection("simulation", scene.simulation));
     sections.singles.push_back(describeSection("material", scene.material));
     sections.singles.push_back(describeSection("ground", scene.ground));
     sections.singles.push_back(describeSection("output", scene.output));
+    sections.singles.push_back(describeSection("surface", scene.surface));
+    sections.singles.push_back(describeSection("render", scene.render));
+    sections.singles.push_back(describeSection("camera", scene.camera));
     sections.arrays.emplace_back("emitter", describeArray("emitter", scene.emitters));
+    sections.arrays.emplace_back("light", describeArray("light", scene.lights));
     return sections;
 }
 
@@ -91,6 +98,11 @@ void validateScene(const Scene& scene, const SceneSections& sections, Reporter& 
     for (std::size_t i = 0; i < scene.emitters.size(); ++i) {
         scene.emitters[i].validate(emitterSections[i], reporter);
     }
+    scene.surface.validate();
+    scene.render.validate(*sections.single("render"));
+    scene.camera.validate(*sections.single("camera"));
+    const auto& lightSections = *sections.array("light");
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) scene.lights[i].validate(lightSections[i]);
 }
 
 }  // namespace globular

@@ -9,8 +9,10 @@
 
 #include "emitter.h"
 #include "material.h"
+#include "render_settings.h"
 #include "simulation.h"
 #include "simulation_settings.h"
+#include "surface_settings.h"
 
 namespace globular {
 
@@ -23,6 +25,10 @@ struct Scene {
     GroundSettings ground;
     OutputSettings output;
     std::vector<EmitterSettings> emitters;  ///< [[emitter]]; one helix when none is given
+    SurfaceSettings surface;
+    RenderSettings render;
+    CameraSettings camera;
+    std::vector<LightSettings> lights;  ///< [[light]]; one key light when none is given
 
     std::filesystem::path file;  ///< the scene file; empty for the built-in default
     std::filesystem::path directory() const;  ///< relative paths resolve against it
