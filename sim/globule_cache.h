@@ -17,11 +17,17 @@ struct CacheInfo {
     double time = 0;  ///< seconds since the start of the simulation
 };
 
-/// @throw IoError naming @p path when it cannot be written.
+/// Positions are stored at full float precision in a point grid whose voxel is twice the
+/// largest radius; CacheInfo is grid metadata "frame" (int) and "time" (double).
+/// @throw IoError naming @p path when it cannot be written, or when a position is not
+///        finite (then nothing is written).
 void writeGlobuleVdb(const std::filesystem::path& path, const Globules& globules,
                      const CacheInfo& info);
 /// Reads a cache written by writeGlobuleVdb (or any PointDataGrid "globules" with P;
-/// v, pscale, id optional). Mass is set to 1.
+/// v, pscale, id optional: defaults 0, 1, index). Mass is set to 1. Globules come back
+/// ordered by id. The file is checked before OpenVDB parses it (which would abort on a
+/// truncated file): its layout always, and for files written by writeGlobuleVdb a
+/// checksum kept in the file-level metadata "globular_checksum".
 /// @throw IoError naming @p path when it is missing, truncated or corrupt.
 Globules readGlobuleVdb(const std::filesystem::path& path, CacheInfo* info = nullptr);
 
