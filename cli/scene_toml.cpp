@@ -1,6 +1,9 @@
 // Reading scenes from TOML (toml++) and writing the resolved scene back.
 
+#include <algorithm>
+#include <cctype>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include <toml++/toml.h>
@@ -22,12 +25,23 @@ struct OverridePlaces {
         }
         return nullptr;
     }
+    /// The first override below @p path ("materail" -> "--set materail.b1=3").
+    const std::string* findUnder(const std::string& path) const {
+        for (const auto& [p, text] : byPath) {
+            if (p.compare(0, path.size() + 1, path + ".") == 0) return &text;
+        }
+        return nullptr;
+    }
 };
 
 SourcePlace placeOf(const toml::node& node, const std::string& sourceName,
                     const std::string& path, const OverridePlaces& overrides) {
     if (const std::string* text = overrides.find(path)) return SourcePlace{*text, 0, 0};
     const auto& src = node.source();
+    // A section that only an override created has no place in the file: name the override.
+    if (src.begin.line == 0) {
+        if (const std::string* text = overrides.findUnder(path)) return SourcePlace{*text, 0, 0};
+    }
     return SourcePlace{sourceName, int(src.begin.line), int(src.begin.column)};
 }
 
@@ -105,12 +119,17 @@ void applyOverride(toml::table& root, const std::string& text, OverridePlaces& p
     for (; i + 1 < parts.size(); ++i) {
         const std::string& part = parts[i];
         toml::node* next = table->get(part);
-        if (i + 2 < parts.size() && std::all_of(parts[i + 1].begin(), parts[i + 1].end(), ::isdigit)) {
+        const std::string& indexText = parts[i + 1];
+        if (i + 2 < parts.size() && !indexText.empty() &&
+            std::all_of(indexText.begin(), indexText.end(),
+                        [](unsigned char c) { return std::isdigit(c) != 0; })) {
             // section.N.key: element N of an array of tables; N == size appends one.
             if (!next) next = &table->insert_or_assign(part, toml::array{}).first->second;
             toml::array* array = next->as_array();
             if (!array) throw SceneError(where + ": '" + part + "' is not an array of tables");
-            const std::size_t index = std::stoul(parts[i + 1]);
+            // Compared as text first: stoul would throw on an index past its range.
+            const std::size_t index =
+                indexText.size() > 9 ? std::size_t(-1) : std::stoul(indexText);
             if (index > array->size()) {
                 throw SceneError(where + ": there are only " + std::to_string(array->size()) +
                                  " [[" + part + "]] sections (indices start at 0)");
@@ -133,9 +152,35 @@ std::string arrayIndexPath(const std::string& name, std::size_t index) {
     return name + "." + std::to_string(index);
 }
 
-toml::table sectionToToml(const SettingsSection& section) {
+/// Whether @p key of an [[emitter]] is read by its type. EmitterSettings::validate is the
+/// one place that knows; ask it with only @p key marked as set. (A resolved scene listing
+/// `rate` for a helix would be rejected when read back.)
+bool emitterKeyApplies(const EmitterSettings& element, const std::string& key) {
+    EmitterSettings probe = element;
+    SettingsSection section("emitter");
+    probe.describe(section);
+    NullReporter quiet;
+    try {
+        probe.validate(section, quiet);
+    } catch (const SceneError&) {
+        return true;  // inconsistent for another reason: keep every key, hide nothing
+    }
+    for (const auto& [k, data] : section.values()) {
+        if (k == key) section.assign(k, SettingValue{data, SourcePlace{"<resolved scene>"}});
+    }
+    try {
+        probe.validate(section, quiet);
+    } catch (const SceneError&) {
+        return false;
+    }
+    return true;
+}
+
+toml::table sectionToToml(const SettingsSection& section,
+                          const std::function<bool(const std::string&)>& keep) {
     toml::table table;
     for (const auto& [key, data] : section.values()) {
+        if (!keep(key)) continue;
         std::visit(
             [&](const auto& v) {
                 using T = std::decay_t<decltype(v)>;
@@ -196,7 +241,14 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
                               (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
         }
     }
-    validateScene(scene, sections, reporter);
+    try {
+        validateScene(scene, sections, reporter);
+    } catch (const SceneError& e) {
+        // A key that kept its default has no line ("[emitter[0]] key 'file'"): name the file.
+        const std::string message = e.what();
+        if (message.starts_with("[")) throw SceneError(sourceName + ": " + message);
+        throw;
+    }
     return scene;
 }
 
@@ -216,10 +268,22 @@ std::string resolvedSceneToml(const Scene& constScene) {
     std::vector<std::pair<std::string, std::size_t>> sizes;
     SceneSections sections = bindSections(scene, sizes);
     toml::table root;
-    for (const auto& section : sections.singles) root.insert(section.name(), sectionToToml(section));
+    const auto everyKey = [](const std::string&) { return true; };
+    for (const auto& section : sections.singles) {
+        root.insert(section.name(), sectionToToml(section, everyKey));
+    }
     for (const auto& [name, elements] : sections.arrays) {
         toml::array array;
-        for (const auto& element : elements) array.push_back(sectionToToml(element));
+        for (std::size_t i = 0; i < elements.size(); ++i) {
+            if (name == "emitter") {
+                const EmitterSettings& emitter = scene.emitters[i];
+                array.push_back(sectionToToml(elements[i], [&](const std::string& key) {
+                    return emitterKeyApplies(emitter, key);
+                }));
+            } else {
+                array.push_back(sectionToToml(elements[i], everyKey));
+            }
+        }
         root.insert(name, array);
     }
     std::ostringstream out;

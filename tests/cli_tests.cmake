@@ -1,1 +1,7 @@
 # Tests of globular_cli.
+globular_test(settings_schema_test SOURCES settings_schema_test.cpp LIBS globular_sim)
+globular_test(scene_test SOURCES scene_test.cpp LIBS globular_cli)
+# End-to-end: runs the built executable, so it must be built first.
+globular_test(cli_test SOURCES cli_test.cpp LIBS globular_cli)
+add_dependencies(cli_test globular)
+target_compile_definitions(cli_test PRIVATE GLOBULAR_TEST_VERSION="${PROJECT_VERSION}")

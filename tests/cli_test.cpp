@@ -1,0 +1,265 @@
+// End-to-end tests of the `globular` executable: exit codes, messages on stderr and the
+// files a sim run writes. Each test runs the built binary in its own temporary folder.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "errors.h"
+#include "reporter.h"
+#include "scene.h"
+
+namespace globular {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kBinary = GLOBULAR_EXECUTABLE;  // build/globular (tests/CMakeLists.txt)
+
+// 30 globules in a helix, 5 frames: a run takes a fraction of a second.
+const char* kSmallScene = R"([simulation]
+frames = 5
+
+[[emitter]]
+type = "helix"
+count = 30
+)";
+
+struct RunResult {
+    int status = -1;  ///< exit status; -1 when killed by a signal
+    std::string out, err;
+};
+
+std::string readFile(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+std::string quote(const std::string& text) {
+    std::string out = "'";
+    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+std::vector<std::string> lines(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) out.push_back(line);
+    return out;
+}
+
+class Cli : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        mDir = fs::temp_directory_path() /
+               ("globular_cli_test_" + std::string(info->name()) + "_" + std::to_string(getpid()));
+        fs::remove_all(mDir);
+        fs::create_directories(mDir);
+        ASSERT_TRUE(fs::exists(kBinary)) << kBinary << " is not built";
+    }
+    void TearDown() override {
+        if (!HasFailure()) fs::remove_all(mDir);
+    }
+
+    /// Runs `globular ARGS` with stdin from /dev/null, capturing stdout and stderr.
+    RunResult run(const std::string& args) {
+        const fs::path out = mDir / "stdout.txt", err = mDir / "stderr.txt";
+        const std::string command = quote(kBinary) + " " + args + " </dev/null >" +
+                                    quote(out.string()) + " 2>" + quote(err.string());
+        const int raw = std::system(command.c_str());
+        RunResult result;
+        if (raw != -1 && WIFEXITED(raw)) result.status = WEXITSTATUS(raw);
+        result.out = readFile(out);
+        result.err = readFile(err);
+        return result;
+    }
+
+    fs::path writeScene(const std::string& name, const std::string& text) {
+        const fs::path path = mDir / name;
+        std::ofstream(path) << text;
+        return path;
+    }
+
+    fs::path mDir;
+};
+
+TEST_F(Cli, VersionExitsZero) {
+    const RunResult r = run("--version");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out, "globular " GLOBULAR_TEST_VERSION "\n");
+}
+
+TEST_F(Cli, HelpExitsZero) {
+    const RunResult r = run("--help");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("run"), std::string::npos) << r.out;
+    const RunResult runHelp = run("run --help");
+    EXPECT_EQ(runHelp.status, 0) << runHelp.err;
+    for (const char* option :
+         {"--out", "--stages", "--frames", "--threads", "--set", "--resume", "--quiet"}) {
+        EXPECT_NE(runHelp.out.find(option), std::string::npos) << option;
+    }
+}
+
+TEST_F(Cli, NoCommandIsBadUsage) {
+    const RunResult r = run("");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_FALSE(r.err.empty());
+}
+
+TEST_F(Cli, SimStageWritesCachesStatsSceneAndState) {
+    const fs::path scene = writeScene("small.toml", kSmallScene), out = mDir / "out";
+    const RunResult r =
+        run("run " + quote(scene.string()) + " --stages sim --out " + quote(out.string()));
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out, "");
+    // Not a terminal: plain progress lines, the last one for frame 5.
+    EXPECT_NE(r.err.find("sim: frame 5/5"), std::string::npos) << r.err;
+
+    for (int frame = 1; frame <= 5; ++frame) {
+        const fs::path cache = out / "cache" / ("globules.000" + std::to_string(frame) + ".vdb");
+        EXPECT_TRUE(fs::is_regular_file(cache)) << cache;
+        EXPECT_GT(fs::file_size(cache), 0u) << cache;
+    }
+    EXPECT_FALSE(fs::exists(out / "cache" / "globules.0006.vdb"));
+    EXPECT_FALSE(fs::exists(out / "cache" / "globules.0000.vdb"));
+    EXPECT_FALSE(fs::exists(out / "cache" / "globules.0001.ply")) << "ply = false by default";
+    EXPECT_TRUE(fs::is_regular_file(out / "state.bin"));
+
+    const std::vector<std::string> stats = lines(readFile(out / "stats.csv"));
+    ASSERT_EQ(stats.size(), 6u) << "a header and 5 rows";
+    EXPECT_TRUE(stats[0].starts_with("frame,time,count,")) << stats[0];
+    const auto columns = std::count(stats[0].begin(), stats[0].end(), ',');
+    for (int frame = 1; frame <= 5; ++frame) {
+        const std::string& row = stats[std::size_t(frame)];
+        EXPECT_TRUE(row.starts_with(std::to_string(frame) + ",")) << row;
+        EXPECT_EQ(std::count(row.begin(), row.end(), ','), columns) << row;
+    }
+    EXPECT_TRUE(stats[1].starts_with("1,0,30,")) << stats[1];
+    EXPECT_TRUE(stats[5].starts_with("5,0.16,30,")) << stats[5];
+
+    // DIR/scene.toml is the resolved scene: exactly what the library writes for this
+    // scene, and a valid scene itself that resolves to the same values.
+    NullReporter quiet;
+    const std::string written = readFile(out / "scene.toml");
+    EXPECT_EQ(written, resolvedSceneToml(loadScene(scene, {}, quiet)));
+    const Scene reread = parseScene(written, (out / "scene.toml").string(), {}, quiet);
+    EXPECT_EQ(reread.simulation.frames, 5);
+    ASSERT_EQ(reread.emitters.size(), 1u);
+    EXPECT_EQ(reread.emitters[0].type, "helix");
+    EXPECT_EQ(reread.emitters[0].count, 30);
+    EXPECT_EQ(reread.material.preset, "liquid");
+}
+
+TEST_F(Cli, SetOverridesTheFrameCount) {
+    const fs::path scene = writeScene("small.toml", kSmallScene), out = mDir / "out";
+    const RunResult r = run("run " + quote(scene.string()) + " --stages sim --quiet --out " +
+                            quote(out.string()) + " --set simulation.frames=3");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(fs::exists(out / "cache" / "globules.0003.vdb"));
+    EXPECT_FALSE(fs::exists(out / "cache" / "globules.0004.vdb"));
+    EXPECT_EQ(lines(readFile(out / "stats.csv")).size(), 4u);
+    NullReporter quiet;
+    EXPECT_EQ(loadScene(out / "scene.toml", {}, quiet).simulation.frames, 3);
+}
+
+TEST_F(Cli, BadSceneExitsTwoAndWritesNothing) {
+    const fs::path scene = writeScene("bad.toml", "[simulation]\ndt = -1\n"), out = mDir / "out";
+    const RunResult r =
+        run("run " + quote(scene.string()) + " --stages sim --out " + quote(out.string()));
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("error: " + scene.string() + ":2:6: [simulation] key 'dt' = -1"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(out / "cache"));
+    EXPECT_FALSE(fs::exists(out / "stats.csv"));
+}
+
+TEST_F(Cli, BadOverrideExitsTwo) {
+    const fs::path scene = writeScene("small.toml", kSmallScene), out = mDir / "out";
+    const RunResult r = run("run " + quote(scene.string()) + " --stages sim --out " +
+                            quote(out.string()) + " --set material.b1");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("error: --set material.b1: expected KEY=VALUE"), std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(out / "cache"));
+}
+
+TEST_F(Cli, UnknownStageExitsTwo) {
+    const fs::path scene = writeScene("small.toml", kSmallScene), out = mDir / "out";
+    const RunResult r =
+        run("run " + quote(scene.string()) + " --stages sim,paint --out " + quote(out.string()));
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("error: --stages: unknown stage 'paint'"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out / "cache"));
+}
+
+TEST_F(Cli, ReversedFrameRangeExitsTwo) {
+    const fs::path scene = writeScene("ten.toml", "[simulation]\nframes = 10\n");
+    const fs::path out = mDir / "out";
+    const RunResult r = run("run " + quote(scene.string()) + " --stages sim --frames 9-3 --out " +
+                            quote(out.string()));
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("error: --frames 9-3: must lie within 1-10"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out / "cache"));
+}
+
+TEST_F(Cli, MissingSceneFileNamesThePath) {
+    const fs::path missing = mDir / "no_such_scene.toml";
+    const RunResult r = run("run " + quote(missing.string()) + " --stages sim --out " +
+                            quote((mDir / "out").string()));
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.err.find("error: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(missing.string()), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, StatsIdenticalForAnyThreadCount) {
+    // Enough globules that the neighbour search and forces split across threads.
+    const fs::path scene = writeScene(
+        "threads.toml", "[simulation]\nframes = 4\n\n[[emitter]]\ntype = \"helix\"\ncount = 600\n");
+    std::string stats[2];
+    for (int threads : {1, 2}) {
+        const fs::path out = mDir / ("out" + std::to_string(threads));
+        const RunResult r =
+            run("run " + quote(scene.string()) + " --stages sim --quiet --threads " +
+                std::to_string(threads) + " --out " + quote(out.string()));
+        ASSERT_EQ(r.status, 0) << r.err;
+        stats[threads - 1] = readFile(out / "stats.csv");
+    }
+    EXPECT_EQ(lines(stats[0]).size(), 5u);
+    EXPECT_EQ(stats[0], stats[1]);
+}
+
+TEST_F(Cli, QuietPrintsNothingOnSuccess) {
+    const fs::path scene = writeScene("small.toml", kSmallScene), out = mDir / "out";
+    const RunResult r =
+        run("run " + quote(scene.string()) + " --stages sim --quiet --out " + quote(out.string()));
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out, "");
+    EXPECT_TRUE(fs::exists(out / "cache" / "globules.0005.vdb"));
+}
+
+TEST_F(Cli, QuietStillPrintsWarnings) {
+    const fs::path scene = writeScene("small.toml", kSmallScene), out = mDir / "out";
+    const RunResult r = run("run " + quote(scene.string()) + " --stages sim --quiet --out " +
+                            quote(out.string()) + " --set material.b1=3.5");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err,
+              "warning: --set material.b1=3.5: [material] key 'b1': b1 = 3.500000 is outside "
+              "the paper's stable range [1, 3]\n");
+}
+
+}  // namespace
+}  // namespace globular
