@@ -1,6 +1,7 @@
 #include "atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -16,11 +17,27 @@ namespace fs = std::filesystem;
 
 namespace {
 
+constexpr const char* kTemporaryMarker = ".tmp";
+
+/// ".<name>.tmp<pid>_<n>" beside the target: hidden, and tells which process owns it.
 fs::path temporaryBeside(const fs::path& target) {
     static std::atomic<unsigned> counter{0};
-    return target.parent_path() / ("." + target.filename().string() + ".tmp" +
+    return target.parent_path() / ("." + target.filename().string() + kTemporaryMarker +
                                    std::to_string(::getpid()) + "_" +
                                    std::to_string(counter++));
+}
+
+/// The owning process id of a temporary's file name, or 0 when it is not one.
+long temporaryOwner(const std::string& name) {
+    if (name.empty() || name[0] != '.') return 0;
+    const auto marker = name.rfind(kTemporaryMarker);
+    const auto underscore = name.rfind('_');
+    if (marker == std::string::npos || underscore == std::string::npos || underscore < marker) {
+        return 0;
+    }
+    const std::string pid = name.substr(marker + 4, underscore - marker - 4);
+    if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos) return 0;
+    return std::stol(pid);
 }
 
 void syncToDisk(const fs::path& file) {
@@ -33,6 +50,19 @@ void syncToDisk(const fs::path& file) {
 }
 
 }  // namespace
+
+std::size_t removeStaleTemporaries(const fs::path& dir) {
+    std::size_t removed = 0;
+    std::error_code ec;
+    for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        const long owner = temporaryOwner(it->path().filename().string());
+        if (owner <= 0 || !it->is_regular_file()) continue;
+        if (::kill(pid_t(owner), 0) == 0 || errno != ESRCH) continue;  // owner still running
+        std::error_code ignored;
+        if (fs::remove(it->path(), ignored)) ++removed;
+    }
+    return removed;
+}
 
 void ensureWritableDirectory(const fs::path& dir) {
     std::error_code ec;

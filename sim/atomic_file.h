@@ -19,6 +19,11 @@ void writeAtomically(const std::filesystem::path& target,
 /// writeAtomically for text or bytes already in memory.
 void writeFileAtomically(const std::filesystem::path& target, const std::string& contents);
 
+/// Removes temporaries that writeAtomically left in @p dir (recursively) when its process
+/// was killed: only those whose embedded process id is no longer running, so a
+/// concurrent job writing into the same directory keeps its files. @return the count.
+std::size_t removeStaleTemporaries(const std::filesystem::path& dir);
+
 /// Creates @p dir (and parents) and checks that it is a writable directory.
 /// @throw IoError naming the directory otherwise.
 void ensureWritableDirectory(const std::filesystem::path& dir);

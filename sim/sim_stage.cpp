@@ -45,6 +45,10 @@ void writeFrame(const Simulation& sim, int frame, const SimStageOptions& options
 /// Restores the run in ctx.outDir; @return the last complete frame.
 int resumeFrom(Simulation& sim, const SimStageOptions& options, const StageContext& ctx,
                std::vector<FrameStats>& stats) {
+    if (std::size_t stale = removeStaleTemporaries(ctx.outDir)) {
+        ctx.report().info("resume: removed " + std::to_string(stale) +
+                          " temporary files left by the interrupted run");
+    }
     const fs::path statePath = ctx.outDir / "state.bin";
     if (!fs::exists(statePath)) {
         ctx.report().info("resume: no checkpoint in " + ctx.outDir.string() +
