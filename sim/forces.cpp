@@ -5,6 +5,8 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <array>
+#include <climits>
 
 namespace globular {
 
@@ -55,26 +57,87 @@ void buildGrid(const Globules& g, const PairForce& pair, NeighborGrid& grid) {
                pair.cutoff(2.0f * maxRadius(g)));
 }
 
-void pairForcesGrid(const Globules& g, const PairForce& pair, NeighborGrid& grid,
+namespace {
+
+void gatherSorted(const Globules& g, const std::vector<uint32_t>& order, SortedGlobules& s) {
+    const std::size_t n = g.size();
+    for (auto* a : {&s.x, &s.y, &s.z, &s.vx, &s.vy, &s.vz, &s.radius}) a->resize(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t k = r.begin(); k != r.end(); ++k) {
+                              const uint32_t i = order[k];
+                              s.x[k] = g.px[i];
+                              s.y[k] = g.py[i];
+                              s.z[k] = g.pz[i];
+                              s.vx[k] = g.vx[i];
+                              s.vy[k] = g.vy[i];
+                              s.vz[k] = g.vz[i];
+                              s.radius[k] = g.radius[i];
+                          }
+                      });
+}
+
+/// Sums forces for sorted positions [begin, end), writing each to its globule's index.
+template <int M, int N>
+void sumRange(const PairForce& pair, const NeighborWorkspace& w,
+              const std::vector<uint32_t>& order, std::size_t begin, std::size_t end,
+              Accelerations& forces) {
+    const SortedGlobules& s = w.sorted;
+    std::array<std::pair<uint32_t, uint32_t>, 27> ranges;
+    std::array<int64_t, 3> cell{INT64_MIN, 0, 0};
+    int rangeCount = 0;
+    for (std::size_t k = begin; k < end; ++k) {
+        // Consecutive globules mostly share a cell: reuse its neighbour ranges.
+        const auto here = w.grid.cellOf(s.x[k], s.y[k], s.z[k]);
+        if (here != cell) {
+            cell = here;
+            rangeCount = w.grid.neighborRanges(s.x[k], s.y[k], s.z[k], ranges);
+        }
+        float fx = 0, fy = 0, fz = 0;
+        for (int b = 0; b < rangeCount; ++b) {
+            accumulateRun<M, N>(pair, s, ranges[b].first, ranges[b].second, s.x[k], s.y[k],
+                                s.z[k], s.vx[k], s.vy[k], s.vz[k], s.radius[k], fx, fy, fz);
+        }
+        const uint32_t i = order[k];
+        forces.x[i] = fx;
+        forces.y[i] = fy;
+        forces.z[i] = fz;
+    }
+}
+
+using SumRange = void (*)(const PairForce&, const NeighborWorkspace&,
+                          const std::vector<uint32_t>&, std::size_t, std::size_t,
+                          Accelerations&);
+
+/// The kernel for the material's exponents: unrolled powers for the pairs the paper
+/// uses, pow() otherwise.
+SumRange kernelFor(const PairForce& pair) {
+    if (pair.integerExponents) {
+        const int m = pair.mInt, n = pair.nInt;
+        if (m == 5 && n == 3) return sumRange<5, 3>;
+        if (m == 5 && n == 1) return sumRange<5, 1>;
+        if (m == 5 && n == 4) return sumRange<5, 4>;
+        if (m == 10 && n == 3) return sumRange<10, 3>;
+        if (m == 7 && n == 5) return sumRange<7, 5>;
+        if (m == 12 && n == 6) return sumRange<12, 6>;
+    }
+    return sumRange<0, 0>;
+}
+
+}  // namespace
+
+void pairForcesGrid(const Globules& g, const PairForce& pair, NeighborWorkspace& w,
                     Accelerations& forces) {
     const std::size_t n = g.size();
     forces.resize(n);
     if (n == 0) return;
-    buildGrid(g, pair, grid);
-    const std::vector<uint32_t>& order = grid.sortedOrder();
-    // Visit globules in grid order so consecutive ones share neighbours in cache.
+    buildGrid(g, pair, w.grid);
+    const std::vector<uint32_t>& order = w.grid.sortedOrder();
+    gatherSorted(g, order, w.sorted);
+    const SumRange sum = kernelFor(pair);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
                       [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t k = r.begin(); k != r.end(); ++k) {
-                              const uint32_t i = order[k];
-                              float f[3] = {0, 0, 0};
-                              grid.forEachCandidate(g.px[i], g.py[i], g.pz[i], [&](uint32_t j) {
-                                  if (j != i) addPair(g, pair, i, j, f);
-                              });
-                              forces.x[i] = f[0];
-                              forces.y[i] = f[1];
-                              forces.z[i] = f[2];
-                          }
+                          sum(pair, w, order, r.begin(), r.end(), forces);
                       });
 }
 
@@ -86,15 +149,15 @@ float groundForce(const GroundSettings& ground, float y, float vy, float radius)
 }
 
 const std::vector<uint32_t>& ForceField::gridOrder(const Globules& globules) {
-    buildGrid(globules, mPair, mGrid);
-    return mGrid.sortedOrder();
+    buildGrid(globules, mPair, mWorkspace.grid);
+    return mWorkspace.grid.sortedOrder();
 }
 
 void ForceField::compute(const Globules& g, Accelerations& out) {
     if (mAllPairs) {
         pairForcesAllPairs(g, mPair, out);
     } else {
-        pairForcesGrid(g, mPair, mGrid, out);
+        pairForcesGrid(g, mPair, mWorkspace, out);
     }
     const float gx = float(mExternal.gravity.x), gy = float(mExternal.gravity.y),
                 gz = float(mExternal.gravity.z);

@@ -9,6 +9,7 @@
 #include "globules.h"
 #include "neighbor_grid.h"
 #include "pair_force.h"
+#include "pair_kernel.h"
 #include "simulation_settings.h"
 
 namespace globular {
@@ -30,9 +31,16 @@ struct ExternalForces {
 /// Sum of pair forces on each globule over all others: the paper's O(N^2) reference.
 void pairForcesAllPairs(const Globules& globules, const PairForce& pair, Accelerations& forces);
 
-/// The same sums over cell-list neighbours only; @p grid is rebuilt from the positions.
-void pairForcesGrid(const Globules& globules, const PairForce& pair, NeighborGrid& grid,
-                    Accelerations& forces);
+/// The neighbour grid and the globules copied into its order, reused between steps.
+struct NeighborWorkspace {
+    NeighborGrid grid;
+    SortedGlobules sorted;
+};
+
+/// The same sums over cell-list neighbours only; the workspace is rebuilt from the
+/// positions. Candidates are read from contiguous grid-ordered copies.
+void pairForcesGrid(const Globules& globules, const PairForce& pair,
+                    NeighborWorkspace& workspace, Accelerations& forces);
 
 /// Builds @p grid over @p globules with cells one interaction cutoff wide.
 void buildGrid(const Globules& globules, const PairForce& pair, NeighborGrid& grid);
@@ -52,13 +60,11 @@ public:
     const std::vector<uint32_t>& gridOrder(const Globules& globules);
 
     const PairForce& pair() const { return mPair; }
-    const NeighborGrid& grid() const { return mGrid; }
-
 private:
     PairForce mPair;
     ExternalForces mExternal;
     bool mAllPairs;
-    NeighborGrid mGrid;
+    NeighborWorkspace mWorkspace;
 };
 
 }  // namespace globular

@@ -34,6 +34,24 @@ public:
         }
     }
 
+    /// The non-empty buckets around (x, y, z) as [begin, end) ranges of sortedOrder()
+    /// positions, each bucket once. @return the number of ranges.
+    int neighborRanges(float x, float y, float z,
+                       std::array<std::pair<uint32_t, uint32_t>, 27>& out) const {
+        std::array<uint32_t, 27> buckets;
+        const int count = neighborBuckets(x, y, z, buckets);
+        int ranges = 0;
+        for (int b = 0; b < count; ++b) {
+            const uint32_t begin = mBucketStart[buckets[b]], end = mBucketStart[buckets[b] + 1];
+            if (begin != end) out[ranges++] = {begin, end};
+        }
+        return ranges;
+    }
+    /// Integer coordinates of the cell holding (x, y, z).
+    std::array<int64_t, 3> cellOf(float x, float y, float z) const {
+        return {cellCoord(x), cellCoord(y), cellCoord(z)};
+    }
+
     float cellSize() const { return mCellSize; }
     /// Point indices ordered by bucket: a cache-friendly traversal order.
     const std::vector<uint32_t>& sortedOrder() const { return mSorted; }

@@ -29,8 +29,8 @@ TEST(Forces, PairForcesConserveMomentum) {
     const Globules g = randomCloud(600, 6.0, 7);
     const PairForce pair = PairForce::fromMaterial(MaterialSettings{});
     Accelerations f;
-    NeighborGrid grid;
-    pairForcesGrid(g, pair, grid, f);
+    NeighborWorkspace workspace;
+    pairForcesGrid(g, pair, workspace, f);
     double sum[3] = {0, 0, 0}, magnitude = 0;
     for (std::size_t i = 0; i < g.size(); ++i) {
         sum[0] += f.x[i];
@@ -49,8 +49,8 @@ TEST(Forces, CellListEqualsAllPairsOnRandomClouds) {
         const Globules g = randomCloud(800, 8.0 + double(seed), seed);
         const PairForce pair = PairForce::fromMaterial(m);
         Accelerations grid, reference;
-        NeighborGrid cells;
-        pairForcesGrid(g, pair, cells, grid);
+        NeighborWorkspace workspace;
+        pairForcesGrid(g, pair, workspace, grid);
         pairForcesAllPairs(g, pair, reference);
         for (std::size_t i = 0; i < g.size(); ++i) {
             const float scale = 1e-4f * (1 + std::abs(reference.x[i]) + std::abs(reference.y[i]) +

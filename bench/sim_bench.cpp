@@ -1,0 +1,65 @@
+// Simulation throughput in globule-steps per second: the paper's liquid (radius 1, r0 1,
+// C_d = 1.5 r0) on a jittered lattice of spacing 1.05, so each globule has about 100
+// neighbours within the drag reach of 3. Fixed seed. Run: build/bench/sim_bench.
+
+#include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+
+#include "forces.h"
+#include "simulation.h"
+
+using namespace globular;
+
+namespace {
+
+/// A cube of about @p count globules resting on the ground.
+SimulationSetup liquidBlock(int64_t count, const std::string& neighbors = "grid") {
+    SimulationSetup setup;
+    setup.simulation.neighbors = neighbors;
+    const double spacing = 1.05;
+    const double side = std::ceil(std::cbrt(double(count))) * spacing;
+    EmitterSettings box;
+    box.type = "box";
+    box.count = count;
+    box.spacing = spacing;
+    box.jitter = 0.05;
+    box.min = {-side / 2, 0.5, -side / 2};
+    box.max = {side / 2, 0.5 + side, side / 2};
+    setup.emitters = {box};
+    return setup;
+}
+
+void runSteps(benchmark::State& state, const SimulationSetup& setup) {
+    tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
+                                std::size_t(state.range(1)));
+    Simulation sim(setup);
+    sim.step(0.001);  // first step pays for allocations
+    for (auto _ : state) sim.step(0.001);
+    state.counters["globule_steps_per_s"] = benchmark::Counter(
+        double(sim.globules().size()) * double(state.iterations()), benchmark::Counter::kIsRate);
+    state.counters["globules"] = double(sim.globules().size());
+}
+
+void BM_SimulationStep(benchmark::State& state) { runSteps(state, liquidBlock(state.range(0))); }
+
+void BM_SimulationStepAllPairs(benchmark::State& state) {
+    runSteps(state, liquidBlock(state.range(0), "all_pairs"));
+}
+
+}  // namespace
+
+BENCHMARK(BM_SimulationStep)
+    ->ArgsProduct({{1000, 10000, 100000, 1000000}, {1, 2}})
+    ->ArgNames({"globules", "threads"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+BENCHMARK(BM_SimulationStepAllPairs)
+    ->ArgsProduct({{400, 10000}, {1}})
+    ->ArgNames({"globules", "threads"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+BENCHMARK_MAIN();
