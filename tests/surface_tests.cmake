@@ -5,6 +5,7 @@ globular_test(surface_tests
             surface_settings_test.cpp
             surface_mesh_test.cpp
             surface_frame_test.cpp
+            surface_stage_test.cpp
     LIBS globular_surface)
 globular_test(surface_vdb_tests
     SOURCES surface_vdb_test.cpp
