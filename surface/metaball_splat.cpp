@@ -46,7 +46,6 @@ std::unique_ptr<LeafType> splatBlock(const GlobuleBins& bins, uint64_t key, cons
     const auto block = GlobuleBins::unpack(key);
     const int64_t ox = block[0] * kDim, oy = block[1] * kDim, oz = block[2] * kDim;
     float sum[kDim * kDim * kDim] = {};
-    bool touched = false;
 
     bins.forEachGlobuleNear(key, [&](uint32_t i) {
         const float r = bins.influenceVoxels(i);
@@ -63,6 +62,11 @@ std::unique_ptr<LeafType> splatBlock(const GlobuleBins& bins, uint64_t key, cons
         const int z1 = std::min(kDim - 1, int(std::floor(cz + r)));
         if (x0 > x1 || y0 > y1 || z0 > z1) return;
         const float invR2 = 1.0f / (r * r);
+        // A whole 8-voxel row at a time, with voxels outside the sphere adding 0: a fixed
+        // trip count without branches, which the compiler vectorises. Cheaper than
+        // clipping each row to its chord, because rows inside a leaf are short.
+        float qz[kDim];
+        for (int z = 0; z < kDim; ++z) qz[z] = (float(z) - cz) * (float(z) - cz) * invR2;
         for (int x = x0; x <= x1; ++x) {
             const float qx = (float(x) - cx) * (float(x) - cx) * invR2;
             for (int y = y0; y <= y1; ++y) {
@@ -70,16 +74,15 @@ std::unique_ptr<LeafType> splatBlock(const GlobuleBins& bins, uint64_t key, cons
                 if (qxy >= 1.0f) continue;
                 float* row = sum + (x << (2 * GlobuleBins::kBlockLog2)) +
                              (y << GlobuleBins::kBlockLog2);
-                for (int z = z0; z <= z1; ++z) {
-                    const float q = qxy + (float(z) - cz) * (float(z) - cz) * invR2;
-                    if (q < 1.0f) {
-                        row[z] += kernel(q);
-                        touched = true;
-                    }
+                for (int z = 0; z < kDim; ++z) {
+                    const float q = qxy + qz[z];
+                    row[z] += q < 1.0f ? kernel(q) : 0.0f;
                 }
             }
         }
     });
+    bool touched = false;
+    for (float v : sum) touched |= v > 0.0f;
     if (!touched) return nullptr;
 
     auto leaf = std::make_unique<LeafType>(openvdb::Coord(int(ox), int(oy), int(oz)), 0.0f, false);
