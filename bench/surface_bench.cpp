@@ -1,0 +1,104 @@
+// Surfacing benchmarks: each step and the whole frame for 1e4, 1e5 and 1e6 globules
+// (bench_puddle), and frames side by side against one frame at a time. Not part of ctest;
+// the 1e6 cases take seconds each, so run them by hand:
+//   build/bench/surface_bench --benchmark_filter=/1000000
+#include <benchmark/benchmark.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <filesystem>
+
+#include "frame_paths.h"
+#include "surface_bench_scene.h"
+#include "surface_frame.h"
+#include "surface_grids.h"
+
+namespace globular {
+namespace {
+
+void sizes(benchmark::internal::Benchmark* b) {
+    b->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
+}
+
+const SurfaceSettings kSettings{};  // defaults: voxel = radius / 4 = 0.25
+
+void BM_Splat(benchmark::State& state) {
+    const Globules g = benchPuddle(std::size_t(state.range(0)));
+    const double h = resolveVoxelSize(kSettings, g);
+    for (auto _ : state) {
+        auto field = splatMetaballs(g, kSettings.metaballKernel(), kSettings.influence, h);
+        state.counters["leaves"] = double(field->tree().leafCount());
+    }
+}
+BENCHMARK(BM_Splat)->Apply(sizes);
+
+void BM_LevelSet(benchmark::State& state) {
+    const Globules g = benchPuddle(std::size_t(state.range(0)));
+    const auto field = splatMetaballs(g, kSettings.metaballKernel(), kSettings.influence,
+                                      resolveVoxelSize(kSettings, g));
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(fieldToLevelSet(*field, kSettings.isoValue, kSettings.bandWidth));
+    }
+}
+BENCHMARK(BM_LevelSet)->Apply(sizes);
+
+void BM_Mesh(benchmark::State& state) {
+    const Globules g = benchPuddle(std::size_t(state.range(0)));
+    const auto field = splatMetaballs(g, kSettings.metaballKernel(), kSettings.influence,
+                                      resolveVoxelSize(kSettings, g));
+    const auto levelSet = fieldToLevelSet(*field, kSettings.isoValue, kSettings.bandWidth);
+    for (auto _ : state) {
+        const TriangleMesh mesh = meshLevelSet(*levelSet, kSettings.adaptivity);
+        state.counters["triangles"] = double(mesh.triangleCount());
+    }
+}
+BENCHMARK(BM_Mesh)->Apply(sizes);
+
+void BM_Fog(benchmark::State& state) {
+    const Globules g = benchPuddle(std::size_t(state.range(0)));
+    const auto field = splatMetaballs(g, kSettings.metaballKernel(), kSettings.influence,
+                                      resolveVoxelSize(kSettings, g));
+    const auto levelSet = fieldToLevelSet(*field, kSettings.isoValue, kSettings.bandWidth);
+    for (auto _ : state) benchmark::DoNotOptimize(levelSetToFog(*levelSet));
+}
+BENCHMARK(BM_Fog)->Apply(sizes);
+
+/// splat + rebuild + fog + mesh, what surfaceGlobules does per frame.
+void BM_SurfaceFrame(benchmark::State& state) {
+    const Globules g = benchPuddle(std::size_t(state.range(0)));
+    for (auto _ : state) benchmark::DoNotOptimize(surfaceGlobules(g, kSettings));
+}
+BENCHMARK(BM_SurfaceFrame)->Apply(sizes);
+
+/// Eight frames surfaced and written (VDB + PLY) the way runSurfaceStage does, either
+/// one at a time with parallel steps (range(1) = 1) or two side by side (2).
+void BM_Frames(benchmark::State& state) {
+    const Globules g = benchPuddle(std::size_t(state.range(0)));
+    const int inFlight = int(state.range(1));
+    const auto dir = std::filesystem::temp_directory_path() / "globular_surface_bench";
+    constexpr int kFrames = 8;
+    for (auto _ : state) {
+        auto one = [&](int f) {
+            const SurfaceFrame frame = surfaceGlobules(g, kSettings);
+            writeSurfaceVdb(surfaceVdbPath(dir, f), frame);
+            writeSurfaceMesh(meshPath(dir, f, "ply"), frame.mesh, "ply");
+        };
+        if (inFlight == 1) {
+            for (int f = 1; f <= kFrames; ++f) one(f);
+        } else {
+            // As runSurfaceStage: isolated, so a waiting thread does not start a third.
+            tbb::parallel_for(1, kFrames + 1,
+                              [&](int f) { tbb::this_task_arena::isolate([&] { one(f); }); });
+        }
+    }
+    std::filesystem::remove_all(dir);
+}
+BENCHMARK(BM_Frames)
+    ->ArgsProduct({{1000, 10000, 100000}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+}  // namespace
+}  // namespace globular
+
+BENCHMARK_MAIN();

@@ -1,0 +1,106 @@
+// Helper of bench/surface_vs_vdb_tool.sh: writes the benchmark particles for vdb_tool and
+// times globular's pipeline on the same particles.
+//   globular_surface_compare points COUNT FILE.ply   x y z of bench_puddle(COUNT)
+//   globular_surface_compare time COUNT VOXEL OUT.ply [THREADS]
+//       splat + level set + mesh + PLY write, the steps vdb_tool's
+//       -points2ls -ls2mesh -write do; prints one line per step (wall seconds), the
+//       process CPU seconds ("cpu") and "total SECONDS" (wall).
+//   globular_surface_compare estimate COUNT VOXEL
+//       surfaces the whole frame and prints the stage's memory estimate beside it.
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <ctime>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include "surface_bench_scene.h"
+#include "surface_estimate.h"
+#include "surface_frame.h"
+#include "surface_grids.h"
+
+using namespace globular;
+
+namespace {
+
+double seconds(std::chrono::steady_clock::time_point since) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+int writePoints(std::size_t count, const std::string& path) {
+    const Globules g = benchPuddle(count);
+    std::ofstream out(path, std::ios::binary);
+    out << "ply\nformat binary_little_endian 1.0\nelement vertex " << g.size()
+        << "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        const float p[3] = {g.px[i], g.py[i], g.pz[i]};
+        out.write(reinterpret_cast<const char*>(p), sizeof p);
+    }
+    return out ? 0 : 1;
+}
+
+int timePipeline(std::size_t count, double voxelSize, const std::string& meshPath) {
+    const std::clock_t cpuStart = std::clock();
+    const Globules g = benchPuddle(count);
+    SurfaceSettings s;
+    s.voxelSize = voxelSize;
+    openvdb::initialize();
+
+    const auto start = std::chrono::steady_clock::now();
+    auto t = start;
+    const auto field = splatMetaballs(g, s.metaballKernel(), s.influence, voxelSize);
+    const double splat = seconds(t);
+    t = std::chrono::steady_clock::now();
+    const auto levelSet = fieldToLevelSet(*field, s.isoValue, s.bandWidth);
+    const double rebuild = seconds(t);
+    t = std::chrono::steady_clock::now();
+    const TriangleMesh mesh = meshLevelSet(*levelSet, s.adaptivity);
+    const double meshing = seconds(t);
+    t = std::chrono::steady_clock::now();
+    writeMeshPly(meshPath, mesh);
+    const double write = seconds(t);
+    const double total = seconds(start);
+    const double cpu = double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
+    std::printf("splat %.3f\nlevelset %.3f\nmesh %.3f\nwrite %.3f\ntriangles %zu\ncpu %.3f\n"
+                "total %.3f\n",
+                splat, rebuild, meshing, write, mesh.triangleCount(), cpu, total);
+    return 0;
+}
+
+/// The whole frame (with fog) and the stage's memory estimate for it, to check the
+/// estimate against the peak memory (run under /usr/bin/time -f %M).
+int estimateFrame(std::size_t count, double voxelSize) {
+    const Globules g = benchPuddle(count);
+    SurfaceSettings s;
+    s.voxelSize = voxelSize;
+    const SurfaceEstimate e = estimateSurface(g, s);
+    const auto start = std::chrono::steady_clock::now();
+    const SurfaceFrame frame = surfaceGlobules(g, s);
+    std::printf("estimate_bytes %llu\nestimate_leaves %zu\nfield_leaves %zu\nframe %.3f\n",
+                static_cast<unsigned long long>(e.bytes), e.fieldLeaves, frame.fieldLeaves,
+                seconds(start));
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const std::string mode = argc > 1 ? argv[1] : "";
+    if (mode == "points" && argc == 4) return writePoints(std::stoul(argv[2]), argv[3]);
+    if (mode == "estimate" && argc == 4) return estimateFrame(std::stoul(argv[2]), std::stod(argv[3]));
+    if (mode == "time" && (argc == 5 || argc == 6)) {
+        // An optional thread count, to compare with vdb_tool on equal terms.
+        const int threads = argc == 6 ? std::stoi(argv[5]) : tbb::info::default_concurrency();
+        int rc = 0;
+        tbb::task_arena(threads).execute(
+            [&] { rc = timePipeline(std::stoul(argv[2]), std::stod(argv[3]), argv[4]); });
+        return rc;
+    }
+    std::fprintf(stderr,
+                 "usage: %s points COUNT FILE.ply\n       %s time COUNT VOXEL OUT.ply [THREADS]\n",
+                 argv[0], argv[0]);
+    return 2;
+}

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# Times globular's surfacing against OpenVDB's own vdb_tool (Debian libopenvdb-tools) on
+# the same particles at the same voxel size, and prints a table with the ratio.
+#
+#   bench/surface_vs_vdb_tool.sh [BUILD_DIR] [COUNT...]     (default: build 1e4 1e5 1e6)
+#
+# Particles: bench_puddle(COUNT) (bench/surface_bench_scene.h), radius 1, written as a
+# PLY point cloud that vdb_tool reads. Both sides run at voxel size 0.25 (globular's
+# default, radius / 4) with a 3-voxel half band and produce a uniform mesh written as PLY:
+#   globular:  Wyvill metaballs -> levelSetRebuild -> volumeToMesh -> PLY
+#   vdb_tool:  -points2ls (spheres of radius 4 voxels = 1 world unit, the radius of a lone
+#              globule's surface) -> -ls2mesh -> -write PLY
+# Times are wall seconds of those steps, from each side's own timers: globular's
+# "total", vdb_tool's -verbose lines (Points->SDF, SDF->mesh, Write geometry). Reading the
+# input and starting the process are left out on both sides.
+set -euo pipefail
+
+build=${1:-build}
+shift || true
+counts=("$@")
+((${#counts[@]})) || counts=(10000 100000 1000000)
+compare="$build/bench/globular_surface_compare"
+voxel=0.25
+radius_voxels=4
+
+[[ -x "$compare" ]] || { echo "build $compare first (ninja -C $build globular_surface_compare)" >&2; exit 1; }
+command -v vdb_tool >/dev/null || { echo "vdb_tool not found: apt-get install libopenvdb-tools" >&2; exit 1; }
+
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+faces() { grep -a -m1 '^element face' "$1" | awk '{print $3}'; }
+
+printf '%-10s %14s %14s %8s %12s %12s\n' globules "globular (s)" "vdb_tool (s)" ratio \
+    "our tris" "vdb faces"
+for n in "${counts[@]}"; do
+    "$compare" points "$n" "$tmp/points.ply"
+    ours=$("$compare" time "$n" "$voxel" "$tmp/ours.ply" | awk '$1 == "total" {print $2}')
+    theirs=$(vdb_tool -verbose -read "$tmp/points.ply" \
+                 -points2ls voxel=$voxel radius=$radius_voxels width=3 \
+                 -ls2mesh adapt=0 -write "$tmp/vdb_tool.ply" 2>&1 |
+             awk '/Points->SDF|SDF -> mesh|Write geometry/ {
+                      # "in 413.8 milliseconds", or "in 3 seconds and ... (3429.4ms)"
+                      if (match($0, /\([0-9.]+ms\)/)) ms += substr($0, RSTART + 1, RLENGTH - 4)
+                      else for (i = 1; i <= NF; ++i) if ($i == "in") ms += $(i + 1) }
+                  END { printf "%.3f", ms / 1000 }')
+    tris=$(( $(faces "$tmp/ours.ply") ))
+    printf '%-10s %14s %14s %8.2f %12s %12s\n' "$n" "$ours" "$theirs" \
+        "$(echo "$ours / $theirs" | bc -l)" "$tris" "$(faces "$tmp/vdb_tool.ply")"
+done
+echo "ratio = globular / vdb_tool; machine: $(nproc) cores, $(uname -m)"
