@@ -83,7 +83,7 @@ void sumRange(const PairForce& pair, const NeighborWorkspace& w,
               const std::vector<uint32_t>& order, std::size_t begin, std::size_t end,
               Accelerations& forces) {
     const SortedGlobules& s = w.sorted;
-    std::array<std::pair<uint32_t, uint32_t>, 27> ranges;
+    std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> ranges;
     std::array<int64_t, 3> cell{INT64_MIN, 0, 0};
     int rangeCount = 0;
     for (std::size_t k = begin; k < end; ++k) {
@@ -91,7 +91,7 @@ void sumRange(const PairForce& pair, const NeighborWorkspace& w,
         const auto here = w.grid.cellOf(s.x[k], s.y[k], s.z[k]);
         if (here != cell) {
             cell = here;
-            rangeCount = w.grid.neighborRanges(s.x[k], s.y[k], s.z[k], ranges);
+            rangeCount = w.grid.neighborRuns(s.x[k], s.y[k], s.z[k], ranges);
         }
         float fx = 0, fy = 0, fz = 0;
         for (int b = 0; b < rangeCount; ++b) {

@@ -6,10 +6,9 @@
 
 namespace globular {
 
-uint32_t NeighborGrid::bucketOf(int64_t cx, int64_t cy, int64_t cz) const {
+uint32_t NeighborGrid::rowBucket(int64_t cy, int64_t cz) const {
     // Teschner et al. 2003 spatial hash primes.
-    const uint64_t h = uint64_t(cx) * 73856093u ^ uint64_t(cy) * 19349663u ^
-                       uint64_t(cz) * 83492791u;
+    const uint64_t h = uint64_t(cy) * 19349663u ^ uint64_t(cz) * 83492791u;
     return uint32_t(h ^ (h >> 29)) & mMask;
 }
 
@@ -27,7 +26,7 @@ void NeighborGrid::build(const float* px, const float* py, const float* pz, std:
     std::vector<uint32_t> bucketOfPoint(n);
     mBucketStart.assign(buckets + 1, 0);
     for (std::size_t i = 0; i < n; ++i) {
-        const uint32_t b = bucketOf(cellCoord(px[i]), cellCoord(py[i]), cellCoord(pz[i]));
+        const uint32_t b = rowBucket(cellCoord(py[i]), cellCoord(pz[i]));
         bucketOfPoint[i] = b;
         ++mBucketStart[b + 1];
     }
@@ -35,17 +34,46 @@ void NeighborGrid::build(const float* px, const float* py, const float* pz, std:
     mSorted.resize(n);
     std::vector<uint32_t> fill(mBucketStart.begin(), mBucketStart.end() - 1);
     for (std::size_t i = 0; i < n; ++i) mSorted[fill[bucketOfPoint[i]]++] = uint32_t(i);
+
+    // Within a bucket, order by x cell (ties by index: deterministic).
+    std::vector<std::pair<int64_t, uint32_t>> keyed;
+    mSortedCellX.resize(n);
+    for (uint32_t b = 0; b < buckets; ++b) {
+        const uint32_t begin = mBucketStart[b], end = mBucketStart[b + 1];
+        if (end - begin > 1) {
+            keyed.clear();
+            for (uint32_t k = begin; k < end; ++k) {
+                keyed.emplace_back(cellCoord(px[mSorted[k]]), mSorted[k]);
+            }
+            std::sort(keyed.begin(), keyed.end());
+            for (uint32_t k = begin; k < end; ++k) {
+                mSortedCellX[k] = keyed[k - begin].first;
+                mSorted[k] = keyed[k - begin].second;
+            }
+        } else if (end == begin + 1) {
+            mSortedCellX[begin] = cellCoord(px[mSorted[begin]]);
+        }
+    }
 }
 
-int NeighborGrid::neighborBuckets(float x, float y, float z,
-                                  std::array<uint32_t, 27>& out) const {
+int NeighborGrid::neighborRuns(float x, float y, float z, std::array<Run, kMaxRuns>& out) const {
     const int64_t cx = cellCoord(x), cy = cellCoord(y), cz = cellCoord(z);
+    std::array<uint32_t, 9> buckets;
     int count = 0;
     for (int64_t dz = -1; dz <= 1; ++dz)
-        for (int64_t dy = -1; dy <= 1; ++dy)
-            for (int64_t dx = -1; dx <= 1; ++dx) out[count++] = bucketOf(cx + dx, cy + dy, cz + dz);
-    std::sort(out.begin(), out.end());
-    return int(std::unique(out.begin(), out.end()) - out.begin());
+        for (int64_t dy = -1; dy <= 1; ++dy) buckets[count++] = rowBucket(cy + dy, cz + dz);
+    std::sort(buckets.begin(), buckets.end());
+    count = int(std::unique(buckets.begin(), buckets.end()) - buckets.begin());
+    int runs = 0;
+    const int64_t* cells = mSortedCellX.data();
+    for (int b = 0; b < count; ++b) {
+        const int64_t* first = cells + mBucketStart[buckets[b]];
+        const int64_t* last = cells + mBucketStart[buckets[b] + 1];
+        const int64_t* lo = std::lower_bound(first, last, cx - 1);
+        const int64_t* hi = std::upper_bound(lo, last, cx + 1);
+        if (lo != hi) out[runs++] = {uint32_t(lo - cells), uint32_t(hi - cells)};
+    }
+    return runs;
 }
 
 }  // namespace globular
