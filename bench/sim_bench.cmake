@@ -1,3 +1,10 @@
 # Benchmarks of globular_sim.
 add_executable(sim_bench sim_bench.cpp)
 target_link_libraries(sim_bench PRIVATE globular_sim benchmark::benchmark)
+
+# Peer comparisons (bench/lammps/compare.sh) and bench/run.sh: the workload as files, and
+# a fixed number of steps on it timed at given thread counts.
+add_executable(make_workload make_workload.cpp)
+target_link_libraries(make_workload PRIVATE globular_sim)
+add_executable(sim_steps sim_steps.cpp)
+target_link_libraries(sim_steps PRIVATE globular_sim)
