@@ -38,7 +38,7 @@ double Jitter::next() {
 
 void EmitterSettings::describe(SettingsSection& s) {
     s.choice("type", type, {"helix", "box", "spout", "points"}, "how globules are placed");
-    s.integer("count", count, 0, 100000000, "number of globules (box: 0 fills the box)");
+    s.integer("count", count, 0, kMaxEmitterGlobules, "number of globules (box: 0 fills the box)");
     s.number("radius", radius, NumberRange::positive(), "globule radius, world units");
     s.number("mass", mass, NumberRange::positive(), "mass per globule");
     s.vec3("velocity", velocity, NumberRange::any(), "initial velocity, units / s");
@@ -62,12 +62,16 @@ void EmitterSettings::describe(SettingsSection& s) {
     s.vec3("offset", offset, NumberRange::any(), "points: offset added, world units");
 }
 
+bool emitterKeyApplies(const std::string& type, const std::string& key) {
+    if (std::find(kCommonKeys.begin(), kCommonKeys.end(), key) != kCommonKeys.end()) return true;
+    const auto it = typeKeys().find(type);
+    return it != typeKeys().end() &&
+           std::find(it->second.begin(), it->second.end(), key) != it->second.end();
+}
+
 void EmitterSettings::validate(const SettingsSection& s, Reporter& reporter) const {
-    const auto& allowed = typeKeys().at(type);
     for (const auto& key : s.keys()) {
-        if (!s.placeOf(key)) continue;
-        if (std::find(kCommonKeys.begin(), kCommonKeys.end(), key) != kCommonKeys.end()) continue;
-        if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+        if (s.placeOf(key) && !emitterKeyApplies(type, key)) {
             throw SceneError(s.describeKey(key) + ": does not apply to a " + type + " emitter");
         }
     }

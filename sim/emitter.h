@@ -18,6 +18,9 @@ namespace globular {
 class SettingsSection;
 class Reporter;
 
+/// The most globules one emitter may produce (memory is checked separately).
+inline constexpr int64_t kMaxEmitterGlobules = 100'000'000;
+
 struct EmitterSettings {
     std::string type = "helix";  ///< helix | box | spout | points
     int64_t count = 400;         ///< globules (box: 0 = fill the box; points: from the file)
@@ -46,6 +49,9 @@ struct EmitterSettings {
     /// Rejects keys that do not apply to the type and inconsistent values.
     void validate(const SettingsSection& section, Reporter& reporter) const;
 };
+
+/// Whether an [[emitter]] of @p type reads @p key (the common keys apply to all types).
+bool emitterKeyApplies(const std::string& type, const std::string& key);
 
 class Emitter {
 public:

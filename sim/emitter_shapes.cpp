@@ -60,17 +60,28 @@ std::vector<Vec3> helixPositions(const EmitterSettings& s, Jitter& jitter) {
 
 std::vector<Vec3> boxPositions(const EmitterSettings& s, Jitter& jitter) {
     const Vec3 extent = s.max - s.min;
-    const auto cells = [&](double e) { return int64_t(std::floor(e / s.spacing)); };
-    const int64_t nx = cells(extent.x), ny = cells(extent.y), nz = cells(extent.z);
-    const int64_t capacity = nx * ny * nz;
+    // Count in floating point first: a huge box at a small spacing must be refused, not
+    // overflow an integer.
+    const auto cells = [&](double e) { return std::floor(e / s.spacing); };
+    const double lattice = cells(extent.x) * cells(extent.y) * cells(extent.z);
+    if (s.count == 0 && lattice > double(kMaxEmitterGlobules)) {
+        throw ResourceError("box emitter: filling the box at spacing " +
+                            std::to_string(s.spacing) + " would make " +
+                            std::to_string(lattice) + " globules, more than the limit of " +
+                            std::to_string(kMaxEmitterGlobules) + "; set count or a larger spacing");
+    }
+    const int64_t nx = int64_t(std::min(cells(extent.x), 1e9)),
+                  ny = int64_t(std::min(cells(extent.y), 1e9)),
+                  nz = int64_t(std::min(cells(extent.z), 1e9));
+    const double capacity = lattice;
     if (capacity == 0) throw SceneError("box emitter: the box is smaller than one spacing");
-    if (s.count > capacity) {
+    if (double(s.count) > capacity) {
         throw SceneError("box emitter: count " + std::to_string(s.count) +
-                         " exceeds the " + std::to_string(capacity) +
+                         " exceeds the " + std::to_string(int64_t(capacity)) +
                          " lattice points the box holds at spacing " +
                          std::to_string(s.spacing));
     }
-    const int64_t wanted = s.count > 0 ? s.count : capacity;
+    const int64_t wanted = s.count > 0 ? s.count : int64_t(capacity);
     std::vector<Vec3> out;
     out.reserve(std::size_t(wanted));
     // Fill bottom-up so a partial box is a settled-looking layer, not a slab on one side.

@@ -76,6 +76,9 @@ TEST(Emitter, BoxFillsItsLatticeInsideTheBox) {
     }
     s.count = 100;
     EXPECT_THROW(emitAll(s), SceneError);
+    s.count = 0;  // fill a box far too large for memory: refused, no overflow
+    s.max = {1e12, 1e12, 1e12};
+    EXPECT_THROW(emitAll(s), ResourceError);
 }
 
 TEST(Emitter, SpoutPoursAtItsRateWithoutOverlap) {
