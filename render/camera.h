@@ -1,0 +1,30 @@
+#pragma once
+// The camera a frame is drawn with, and automatic framing of a whole animation.
+
+#include "scene_extent.h"
+#include "transform.h"
+#include "vec3.h"
+
+namespace globular {
+
+struct ViewCamera {
+    Vec3 position{0, 6, 24};  ///< eye, world units
+    Vec3 target{0, 2, 0};     ///< looked-at point, world units
+    double fov = 40;          ///< vertical field of view, degrees
+};
+
+/// A three-quarter view from slightly above, as in the paper's figures, aimed and placed
+/// so that the content (@p extent's samples, each a sphere of its largest radius, and
+/// their feet on the ground at @p groundHeight) is centred in the central 90% of an image
+/// of aspect @p aspect (width / height). Without samples it frames the box's corners;
+/// an empty extent frames a few units of ground around the origin.
+ViewCamera autoFrame(const SceneExtent& extent, double groundHeight, double fov, double aspect);
+
+/// Near and far clip distances (world units) that hold @p content and the ground out to
+/// @p groundReach from the content's centre, for a camera at @p eye.
+struct DepthRange {
+    double zNear = 0.1, zFar = 100;
+};
+DepthRange depthRange(Vec3 eye, const Bounds3& content, double groundReach);
+
+}  // namespace globular

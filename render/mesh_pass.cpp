@@ -1,0 +1,69 @@
+#include "mesh_pass.h"
+
+#include <algorithm>
+#include <string>
+
+#include "errors.h"
+#include "shaders.h"
+
+namespace globular::detail {
+
+MeshPass::MeshPass()
+    : mProgram("mesh", shaders::meshVertex(), shaders::meshFragment()),
+      mShadowProgram("mesh shadow", shaders::meshShadowVertex(), shaders::depthOnlyFragment()),
+      mVertexArray(gl::makeVertexArray()),
+      mPositions(gl::makeBuffer()),
+      mNormals(gl::makeBuffer()),
+      mIndices(gl::makeBuffer()) {}
+
+void MeshPass::upload(const MeshView& mesh) {
+    const std::size_t indexCount = mesh.triangleCount * 3;
+    if (indexCount > 0) {
+        const uint32_t largest = *std::max_element(mesh.triangles, mesh.triangles + indexCount);
+        if (largest >= mesh.vertexCount) {
+            throw Error("render: mesh triangle index " + std::to_string(largest) +
+                        " is out of range (" + std::to_string(mesh.vertexCount) + " vertices)");
+        }
+    }
+    mIndexCount = indexCount;
+    glBindVertexArray(mVertexArray.id());
+    const auto bytes = GLsizeiptr(mesh.vertexCount * 3 * sizeof(float));
+    glBindBuffer(GL_ARRAY_BUFFER, mPositions.id());
+    glBufferData(GL_ARRAY_BUFFER, bytes, mesh.positions, GL_STREAM_DRAW);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glEnableVertexAttribArray(0);
+    if (mesh.normals) {
+        glBindBuffer(GL_ARRAY_BUFFER, mNormals.id());
+        glBufferData(GL_ARRAY_BUFFER, bytes, mesh.normals, GL_STREAM_DRAW);
+        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+        glEnableVertexAttribArray(1);
+    } else {
+        glDisableVertexAttribArray(1);
+        glVertexAttrib3f(1, 0, 0, 0);  // the fragment shader then uses face normals
+    }
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mIndices.id());
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indexCount * sizeof(uint32_t)),
+                 mesh.triangles, GL_STREAM_DRAW);
+    glBindVertexArray(0);
+    gl::checkErrors("uploading the mesh");
+}
+
+void MeshPass::drawShadow(const FrameUniforms& f) const {
+    if (mIndexCount == 0) return;
+    glUseProgram(mShadowProgram.id());
+    setMat4(mShadowProgram, "uLightViewProj", f.lightViewProj);
+    glBindVertexArray(mVertexArray.id());
+    glDrawElements(GL_TRIANGLES, GLsizei(mIndexCount), GL_UNSIGNED_INT, nullptr);
+    glBindVertexArray(0);
+}
+
+void MeshPass::draw(const FrameUniforms& f) const {
+    if (mIndexCount == 0) return;
+    glUseProgram(mProgram.id());
+    applyFrameUniforms(mProgram, f);
+    glBindVertexArray(mVertexArray.id());
+    glDrawElements(GL_TRIANGLES, GLsizei(mIndexCount), GL_UNSIGNED_INT, nullptr);
+    glBindVertexArray(0);
+}
+
+}  // namespace globular::detail

@@ -1,0 +1,27 @@
+#pragma once
+// Internal to render/: a triangle mesh (the surfacing stage's output) drawn smooth-shaded
+// with its vertex normals, in the camera view and in the key light's shadow map.
+
+#include "frame_uniforms.h"
+#include "gl_objects.h"
+#include "mesh_view.h"
+
+namespace globular::detail {
+
+class MeshPass {
+public:
+    MeshPass();
+    /// @throw Error when an index is out of range (the GL would read garbage).
+    void upload(const MeshView& mesh);
+    void drawShadow(const FrameUniforms& frame) const;
+    void draw(const FrameUniforms& frame) const;
+
+private:
+    gl::Program mProgram;
+    gl::Program mShadowProgram;
+    gl::VertexArray mVertexArray;
+    gl::Buffer mPositions, mNormals, mIndices;
+    std::size_t mIndexCount = 0;
+};
+
+}  // namespace globular::detail

@@ -1,0 +1,20 @@
+#pragma once
+// The renderer's mesh input: a view of arrays owned by the caller, so the surfacing
+// stage's TriangleMesh (surface/mesh.h: positions, normals, triangles) is drawn without
+// a copy. @code MeshView view{m.positions.data(), m.normals.data(), m.positions.size() / 3,
+//                             m.triangles.data(), m.triangles.size() / 3}; @endcode
+
+#include <cstddef>
+#include <cstdint>
+
+namespace globular {
+
+struct MeshView {
+    const float* positions = nullptr;  ///< x y z per vertex, world units
+    const float* normals = nullptr;    ///< x y z per vertex (unit), or null: faceted shading
+    std::size_t vertexCount = 0;
+    const uint32_t* triangles = nullptr;  ///< three vertex indices per triangle
+    std::size_t triangleCount = 0;
+};
+
+}  // namespace globular

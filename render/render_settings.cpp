@@ -1,0 +1,119 @@
+#include "render_settings.h"
+
+#include <functional>
+
+#include "errors.h"
+#include "settings_schema.h"
+
+namespace globular {
+
+namespace {
+
+using KeyName = std::function<std::string(const std::string& key)>;
+
+KeyName plainKeys(const std::string& section) {
+    return [section](const std::string& key) { return "[" + section + "] key '" + key + "'"; };
+}
+
+KeyName placedKeys(const SettingsSection& section) {
+    return [&section](const std::string& key) { return section.describeKey(key); };
+}
+
+const NumberRange kUnit = NumberRange::between(0, 1);
+
+void checkRender(const RenderSettings& s, const KeyName& name) {
+    const auto n = s.samples;
+    if (n != 1 && n != 2 && n != 4 && n != 8 && n != 16) {
+        throw SceneError(name("samples") + " = " + std::to_string(n) +
+                         ": must be 1, 2, 4, 8 or 16");
+    }
+    if (s.colorBy == "speed" && s.mode == "surface") {
+        throw SceneError(name("color_by") +
+                         " = \"speed\": needs mode = \"spheres\" (a surface mesh has no "
+                         "velocities); use \"height\" or \"constant\"");
+    }
+    if (s.rampMax < s.rampMin) {
+        throw SceneError(name("ramp_max") + " = " + std::to_string(s.rampMax) +
+                         ": must not be below ramp_min = " + std::to_string(s.rampMin));
+    }
+}
+
+void checkCamera(const CameraSettings& c, const KeyName& name) {
+    if (!c.autoFrame && length(c.position - c.target) <= 0) {
+        throw SceneError(name("target") + ": must differ from position (the view direction "
+                                          "would be undefined)");
+    }
+}
+
+void checkLight(const LightSettings& l, const KeyName& name) {
+    if (length(l.direction) <= 0) {
+        throw SceneError(name("direction") + " = [0, 0, 0]: a light needs a direction");
+    }
+}
+
+}  // namespace
+
+void RenderSettings::describe(SettingsSection& s) {
+    s.integer("width", width, 16, 16384, "image width, pixels");
+    s.integer("height", height, 16, 16384, "image height, pixels");
+    s.choice("mode", mode, {"spheres", "surface"},
+             "spheres: each globule a shaded sphere of its radius; surface: the surfacing "
+             "stage's mesh");
+    s.integer("samples", samples, 1, 16, "multisample anti-aliasing samples per pixel (1 = off)");
+    s.choice("color_by", colorBy, {"constant", "speed", "height"},
+             "colour by the constant color, or by speed or height through a colour ramp");
+    s.vec3("color", color, kUnit, "base colour, sRGB in [0, 1]");
+    s.number("ramp_min", rampMin, NumberRange::any(),
+             "speed (units/s) or height (units) mapped to the ramp's start");
+    s.number("ramp_max", rampMax, NumberRange::any(),
+             "value mapped to the ramp's end; equal to ramp_min: the animation's own range");
+    s.number("specular", specular, kUnit, "strength of the key light's highlight, 0 = matte");
+    s.number("ambient", ambient, kUnit, "sky light as a fraction of the base colour");
+    s.flag("ground", ground, "draw the ground plane (at [ground] height)");
+    s.vec3("ground_color", groundColor, kUnit, "ground colour, sRGB in [0, 1]");
+    s.number("checker_size", checkerSize, NumberRange::nonNegative(),
+             "edge of a ground checker square, world units; 0 = automatic");
+    s.vec3("background", background, kUnit, "background colour, sRGB in [0, 1]");
+    s.integer("shadow_map_size", shadowMapSize, 256, 8192, "shadow map texels per side");
+    s.integer("contact_sheet", contactSheet, 0, 1000,
+              "frames tiled into contact_sheet.png, evenly spaced; 0 = no sheet");
+    s.integer("contact_columns", contactColumns, 0, 100,
+              "tiles per row of the contact sheet; 0 = automatic");
+    s.integer("contact_tile_width", contactTileWidth, 16, 4096,
+              "width of one contact sheet tile, pixels");
+    s.flag("movie", movie, "assemble the frames into movie.mp4 (needs ffmpeg on PATH)");
+    s.number("movie_fps", movieFps, NumberRange::nonNegative(),
+             "movie frames per second; 0 = the simulation's fps");
+}
+
+void RenderSettings::validate() const { checkRender(*this, plainKeys("render")); }
+void RenderSettings::validate(const SettingsSection& s) const { checkRender(*this, placedKeys(s)); }
+
+void CameraSettings::describe(SettingsSection& s) {
+    s.vec3("position", position, NumberRange::any(), "eye position, world units");
+    s.vec3("target", target, NumberRange::any(), "point looked at, world units");
+    s.number("fov", fov, {1, 170}, "vertical field of view, degrees");
+    s.flag("auto_frame", autoFrame,
+           "frame the whole animation automatically; false when position or target is given");
+}
+
+void CameraSettings::noteGivenKeys(const SettingsSection& s) {
+    if (s.placeOf("auto_frame")) return;
+    if (s.placeOf("position") || s.placeOf("target")) autoFrame = false;
+}
+
+void CameraSettings::validate() const { checkCamera(*this, plainKeys("camera")); }
+void CameraSettings::validate(const SettingsSection& s) const { checkCamera(*this, placedKeys(s)); }
+
+void LightSettings::describe(SettingsSection& s) {
+    s.vec3("direction", direction, NumberRange::any(),
+           "direction the light travels (from the light into the scene)");
+    s.vec3("color", color, kUnit, "light colour, sRGB in [0, 1]");
+    s.number("intensity", intensity, NumberRange::nonNegative(), "multiplies color");
+    s.flag("shadows", shadows, "casts shadows (only the first light does)");
+}
+
+void LightSettings::validate() const { checkLight(*this, plainKeys("light")); }
+void LightSettings::validate(const SettingsSection& s) const { checkLight(*this, placedKeys(s)); }
+
+}  // namespace globular

@@ -1,0 +1,63 @@
+#pragma once
+// Draws one frame into an Image: globules as shaded spheres, or a triangle mesh, over a
+// ground plane, lit by a key light with a shadow map plus fill lights and sky light,
+// multisample anti-aliased, shaded in linear light and encoded to sRGB.
+// Offscreen OpenGL through OSMesa (gl_context.h); no GL types in this header.
+
+#include <memory>
+#include <vector>
+
+#include "camera.h"
+#include "globules.h"
+#include "mesh_view.h"
+#include "png_image.h"
+#include "render_settings.h"
+#include "scene_extent.h"
+
+namespace globular {
+
+/// Everything that decides how a frame looks, apart from its globules or mesh.
+struct FrameSetup {
+    RenderSettings render;  ///< colours, color_by, ground; size and samples are the Renderer's
+    ViewCamera camera;
+    std::vector<LightSettings> lights;  ///< the first is the key light (shadows); may be empty
+    double groundHeight = 0;            ///< world units
+    /// The region the whole animation occupies: sizes the shadow map and the ground's fade
+    /// so they do not change from frame to frame. Empty: the frame's own extent.
+    Bounds3 content;
+    /// Values at the ends of the colour ramp (color_by speed or height). Empty: the
+    /// frame's own range.
+    ValueRange ramp;
+};
+
+class Renderer {
+public:
+    /// Creates the GL resources (and the process's GL context on first use).
+    /// @param samples 1 (no anti-aliasing), 2, 4, ... up to what the driver supports.
+    /// @param shadowMapSize texels per side of the key light's shadow map.
+    /// @throw Error when the GL context cannot be made or @p samples is unsupported.
+    Renderer(int width, int height, int samples, int shadowMapSize = 2048);
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    /// Each globule a sphere of its radius. Non-finite globules are skipped.
+    Image drawSpheres(const Globules& globules, const FrameSetup& setup);
+    /// The mesh, smooth-shaded with its normals (faceted without).
+    /// @throw Error when a triangle index is out of range.
+    Image drawMesh(const MeshView& mesh, const FrameSetup& setup);
+
+    int width() const;
+    int height() const;
+    int samples() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> mImpl;
+};
+
+/// Checker edge for automatic ground: a round number (1, 2 or 5 times a power of ten)
+/// near a sixth of the content's radius, so a few squares span the content.
+double automaticCheckerSize(const Bounds3& content);
+
+}  // namespace globular

@@ -1,0 +1,37 @@
+#pragma once
+// Internal to render/: the GLSL sources of every pass, assembled from a shared shading
+// library so spheres, meshes and the ground are lit identically.
+
+#include <string>
+
+namespace globular::shaders {
+
+inline constexpr int kMaxLights = 8;
+
+/// "#version 400 core" and the defines every source starts with.
+std::string version();
+/// @p body after the version, the colour ramp and the lighting functions (shade()).
+std::string fragment(const std::string& body);
+/// @p body after the version and the colour ramp (albedoFor()).
+std::string vertex(const std::string& body);
+
+std::string meshVertex();
+std::string meshFragment();
+std::string meshShadowVertex();
+std::string depthOnlyFragment();
+std::string groundVertex();
+std::string groundFragment();
+
+// sphere_shaders.cpp
+std::string spherePointVertex();
+std::string sphereQuadVertex();
+std::string sphereVisibilityFragment();
+std::string fullScreenVertex();
+/// @param samples of the id buffer it reads (1: not multisampled).
+std::string sphereShadeFragment(int samples);
+std::string sphereShadowPointVertex();
+std::string sphereShadowQuadVertex();
+/// @param points sprites (the disc from gl_PointCoord) or squares (from the vertex shader).
+std::string sphereShadowFragment(bool points);
+
+}  // namespace globular::shaders

@@ -1,0 +1,60 @@
+#include "shadow_map.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "errors.h"
+
+namespace globular::detail {
+
+ShadowMap::ShadowMap(int maxSize)
+    : mMaxSize(maxSize), mDepth(gl::makeTexture()), mFramebuffer(gl::makeFramebuffer()) {
+    allocate(std::min(512, maxSize));
+}
+
+int ShadowMap::sizeFor(double worldSize, double pixelWorldSize) const {
+    // 0.75: a little finer than a pixel, so shadow edges stay crisp under filtering.
+    const double texel = 0.75 * std::max(pixelWorldSize, 1e-12);
+    const double wanted = std::ceil(worldSize / texel / 64) * 64;
+    return int(std::clamp(wanted, double(std::min(512, mMaxSize)), double(mMaxSize)));
+}
+
+void ShadowMap::allocate(int size) {
+    mSize = size;
+    glBindTexture(GL_TEXTURE_2D, mDepth.id());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, size, size, 0, GL_DEPTH_COMPONENT,
+                 GL_UNSIGNED_INT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    // Outside the map nothing casts a shadow: the border is the far plane.
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+    const float far[] = {1, 1, 1, 1};
+    glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, far);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    glBindFramebuffer(GL_FRAMEBUFFER, mFramebuffer.id());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, mDepth.id(), 0);
+    glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        throw Error("render: the shadow map framebuffer is incomplete");
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl::checkErrors("creating the shadow map");
+}
+
+void ShadowMap::beginDrawing(int size) {
+    if (size != mSize) allocate(size);
+    glBindFramebuffer(GL_FRAMEBUFFER, mFramebuffer.id());
+    glViewport(0, 0, mSize, mSize);
+    glClearDepth(1.0);
+    glClear(GL_DEPTH_BUFFER_BIT);
+}
+
+void ShadowMap::bindForSampling() const {
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, mDepth.id());
+}
+
+}  // namespace globular::detail

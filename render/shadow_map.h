@@ -1,0 +1,34 @@
+#pragma once
+// Internal to render/: the key light's depth map (an orthographic view along the light
+// that covers the content), sampled with hardware depth comparison and linear filtering.
+
+#include "gl_objects.h"
+
+namespace globular::detail {
+
+class ShadowMap {
+public:
+    /// @param maxSize the most texels per side a frame may use
+    explicit ShadowMap(int maxSize);
+    /// Texels per side for content of @p worldSize (world units across) seen with pixels of
+    /// @p pixelWorldSize: about 1.3 texels per pixel, as finer detail is never seen and
+    /// costs fill (a million globules cover the map many times over), within
+    /// [min(512, maxSize), maxSize].
+    int sizeFor(double worldSize, double pixelWorldSize) const;
+    /// Binds the map, @p size texels per side, as the render target; clears it to the
+    /// far plane.
+    void beginDrawing(int size);
+    /// Binds the map to texture unit 0 for the shading passes.
+    void bindForSampling() const;
+    int size() const { return mSize; }
+
+private:
+    void allocate(int size);
+
+    int mMaxSize;
+    int mSize = 0;
+    gl::Texture mDepth;
+    gl::Framebuffer mFramebuffer;
+};
+
+}  // namespace globular::detail

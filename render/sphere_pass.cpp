@@ -1,0 +1,223 @@
+#include "sphere_pass.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "errors.h"
+#include "shaders.h"
+
+namespace globular::detail {
+
+namespace {
+
+enum Array { kX, kY, kZ, kRadius, kSpeed };
+
+// Sprites are chosen below this fraction of the largest size the vertex shader accepts,
+// so a float difference between this file and the shader cannot lose a sphere.
+constexpr float kSpriteMargin = 10;
+
+void uploadFloats(const gl::Buffer& buffer, const float* data, std::size_t n) {
+    glBindBuffer(GL_ARRAY_BUFFER, buffer.id());
+    // Orphan and refill: the driver need not wait for the previous frame's draw.
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n * sizeof(float)), data, GL_STREAM_DRAW);
+}
+
+// As the point vertex shader: half the projection's extent along one axis, in units of
+// x/depth, about the projected centre c (tangent-cone half-angle alpha, theta the
+// centre's angle): tan(theta + alpha) - tan(theta) = tan(alpha) (1 + c^2) / (1 - |c| tan(alpha)).
+double axisHalfExtent(double a, double depth, double r) {
+    const double c = a / depth;
+    const double tanAlpha = r / std::sqrt(std::max(a * a + depth * depth - r * r, 1e-30));
+    const double denominator = 1.0 - std::abs(c) * tanAlpha;
+    return denominator > 0.02 ? tanAlpha * (1.0 + c * c) / denominator
+                              : std::numeric_limits<double>::infinity();
+}
+
+bool finite(float x, float y, float z, float r) {
+    return std::isfinite(x) && std::isfinite(y) && std::isfinite(z) && std::isfinite(r) && r > 0;
+}
+
+}  // namespace
+
+float spriteSize(Vec3 v, double r, double focalX, double focalY, double zNear) {
+    const double depth = -v.z;
+    if (!(depth - r > zNear)) return std::numeric_limits<float>::infinity();
+    return float(2.0 * std::max(axisHalfExtent(v.x, depth, r) * focalX,
+                                axisHalfExtent(v.y, depth, r) * focalY) +
+                 1.0);
+}
+
+SpherePass::SpherePass(int samples)
+    : mSamples(samples),
+      mVisibilityPoints("sphere sprite", shaders::spherePointVertex(),
+                        shaders::sphereVisibilityFragment()),
+      mVisibilitySquares("sphere square", shaders::sphereQuadVertex(),
+                         shaders::sphereVisibilityFragment()),
+      mShade("sphere shading", shaders::fullScreenVertex(),
+             shaders::sphereShadeFragment(samples)),
+      mShadowPoints("sphere shadow sprite", shaders::sphereShadowPointVertex(),
+                    shaders::sphereShadowFragment(true)),
+      mShadowSquares("sphere shadow square", shaders::sphereShadowQuadVertex(),
+                     shaders::sphereShadowFragment(false)),
+      mPointArray(gl::makeVertexArray()),
+      mSquareArray(gl::makeVertexArray()),
+      mEmptyArray(gl::makeVertexArray()),
+      mArrays{gl::makeBuffer(), gl::makeBuffer(), gl::makeBuffer(), gl::makeBuffer(),
+              gl::makeBuffer()},
+      mTextures{gl::makeTexture(), gl::makeTexture(), gl::makeTexture(), gl::makeTexture(),
+                gl::makeTexture()},
+      mCorners(gl::makeBuffer()),
+      mSquares(gl::makeBuffer()),
+      mSquareIds(gl::makeBuffer()) {
+    float pointSizes[2] = {1, 64};
+    glGetFloatv(GL_POINT_SIZE_RANGE, pointSizes);
+    mMaxSprite = std::min(250.0f, pointSizes[1] - 2.0f);
+
+    glBindVertexArray(mPointArray.id());
+    for (GLuint i = kX; i <= kRadius; ++i) {
+        glBindBuffer(GL_ARRAY_BUFFER, mArrays[i].id());
+        glVertexAttribPointer(i + 1, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
+        glEnableVertexAttribArray(i + 1);
+    }
+    const float corners[] = {-1, -1, 1, -1, -1, 1, 1, 1};
+    glBindVertexArray(mSquareArray.id());
+    glBindBuffer(GL_ARRAY_BUFFER, mCorners.id());
+    glBufferData(GL_ARRAY_BUFFER, sizeof corners, corners, GL_STATIC_DRAW);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glEnableVertexAttribArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, mSquares.id());
+    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glVertexAttribDivisor(1, 1);
+    glEnableVertexAttribArray(1);
+    glBindBuffer(GL_ARRAY_BUFFER, mSquareIds.id());
+    glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, 0, nullptr);
+    glVertexAttribDivisor(2, 1);
+    glEnableVertexAttribArray(2);
+    glBindVertexArray(0);
+    gl::checkErrors("setting up the sphere passes");
+}
+
+void SpherePass::upload(const Globules& g, bool withSpeed, const FrameUniforms& f) {
+    const std::size_t n = g.size();
+    if (g.py.size() != n || g.pz.size() != n || g.radius.size() != n ||
+        (withSpeed && (g.vx.size() != n || g.vy.size() != n || g.vz.size() != n))) {
+        throw Error("render: the globules' arrays have different lengths");
+    }
+    mCount = n;
+    uploadFloats(mArrays[kX], g.px.data(), n);
+    uploadFloats(mArrays[kY], g.py.data(), n);
+    uploadFloats(mArrays[kZ], g.pz.data(), n);
+    uploadFloats(mArrays[kRadius], g.radius.data(), n);
+    std::vector<float> speed(withSpeed ? n : 1, 0.0f);
+    for (std::size_t i = 0; withSpeed && i < n; ++i) {
+        speed[i] = std::sqrt(g.vx[i] * g.vx[i] + g.vy[i] * g.vy[i] + g.vz[i] * g.vz[i]);
+    }
+    uploadFloats(mArrays[kSpeed], speed.data(), speed.size());
+    for (int i = kX; i <= kSpeed; ++i) {
+        glBindTexture(GL_TEXTURE_BUFFER, mTextures[i].id());
+        glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, mArrays[i].id());
+    }
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+
+    // The few spheres too big for a sprite, in the camera's view or the light's.
+    std::vector<float> squares;
+    std::vector<uint32_t> ids;
+    const float limit = mMaxSprite - kSpriteMargin;
+    const Mat4& view = f.view;
+    for (std::size_t i = 0; i < n; ++i) {
+        const float x = g.px[i], y = g.py[i], z = g.pz[i], r = g.radius[i];
+        if (!finite(x, y, z, r)) continue;  // the shaders skip these
+        const Vec3 v{view(0, 0) * x + view(0, 1) * y + view(0, 2) * z + view(0, 3),
+                     view(1, 0) * x + view(1, 1) * y + view(1, 2) * z + view(1, 3),
+                     view(2, 0) * x + view(2, 1) * y + view(2, 2) * z + view(2, 3)};
+        const bool bigInLight = f.shadowed && 2.0f * r * f.texelsPerUnit + 2.0f > limit;
+        if (bigInLight ||
+            !(spriteSize(v, r, f.focalPixels[0], f.focalPixels[1], f.zNear) <= limit)) {
+            squares.insert(squares.end(), {x, y, z, r});
+            ids.push_back(uint32_t(i + 1));
+        }
+    }
+    mSquareCount = ids.size();
+    glBindBuffer(GL_ARRAY_BUFFER, mSquares.id());
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(squares.size() * sizeof(float)), squares.data(),
+                 GL_STREAM_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, mSquareIds.id());
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(ids.size() * sizeof(uint32_t)), ids.data(),
+                 GL_STREAM_DRAW);
+    gl::checkErrors("uploading globules");
+}
+
+void SpherePass::drawSquares() const {
+    if (mSquareCount == 0) return;
+    glBindVertexArray(mSquareArray.id());
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(mSquareCount));
+}
+
+void SpherePass::drawShadow(const FrameUniforms& f) const {
+    if (mCount == 0) return;
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    glUseProgram(mShadowPoints.id());
+    setMat4(mShadowPoints, "uLightViewProj", f.lightViewProj);
+    setVec3(mShadowPoints, "uLightToward", f.lightToward.front());
+    glUniform1f(mShadowPoints.uniform("uTexelsPerUnit"), f.texelsPerUnit);
+    glUniform1f(mShadowPoints.uniform("uMaxSprite"), mMaxSprite);
+    glBindVertexArray(mPointArray.id());
+    glDrawArrays(GL_POINTS, 0, GLsizei(mCount));
+
+    glUseProgram(mShadowSquares.id());
+    setMat4(mShadowSquares, "uLightViewProj", f.lightViewProj);
+    setVec3(mShadowSquares, "uLightRight", f.lightRight);
+    setVec3(mShadowSquares, "uLightUp", f.lightUp);
+    setVec3(mShadowSquares, "uLightToward", f.lightToward.front());
+    drawSquares();
+    glBindVertexArray(0);
+}
+
+void SpherePass::drawVisibility(const FrameUniforms& f, const FrameTarget& target) const {
+    if (mCount == 0) return;
+    target.drawIds();
+    const bool coverage = mSamples > 1;
+    if (coverage) glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    for (const gl::Program* program : {&mVisibilityPoints, &mVisibilitySquares}) {
+        glUseProgram(program->id());
+        applyFrameUniforms(*program, f);
+        glUniform1i(program->uniform("uAlphaCoverage"), coverage ? 1 : 0);
+        glUniform1f(program->uniform("uMaxSprite"), mMaxSprite);
+        if (program == &mVisibilityPoints) {
+            glBindVertexArray(mPointArray.id());
+            glDrawArrays(GL_POINTS, 0, GLsizei(mCount));
+        } else {
+            drawSquares();
+        }
+    }
+    glBindVertexArray(0);
+    glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    target.drawColor();
+}
+
+void SpherePass::drawShading(const FrameUniforms& f, const FrameTarget& target) const {
+    if (mCount == 0) return;
+    target.drawColor();
+    glUseProgram(mShade.id());
+    applyFrameUniforms(mShade, f);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(mSamples > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D, target.idTexture());
+    glUniform1i(mShade.uniform("uIds"), 1);
+    const char* names[] = {"uX", "uY", "uZ", "uRadius", "uValue"};
+    for (int i = kX; i <= kSpeed; ++i) {
+        glActiveTexture(GL_TEXTURE2 + i);
+        glBindTexture(GL_TEXTURE_BUFFER, mTextures[i].id());
+        glUniform1i(mShade.uniform(names[i]), 2 + i);
+    }
+    glActiveTexture(GL_TEXTURE0);
+    // Every pixel once; the depth buffer keeps the spheres' depth for the ground.
+    glDisable(GL_DEPTH_TEST);
+    glBindVertexArray(mEmptyArray.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glEnable(GL_DEPTH_TEST);
+}
+
+}  // namespace globular::detail

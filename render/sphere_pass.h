@@ -1,0 +1,59 @@
+#pragma once
+// Internal to render/: globules drawn as ray-cast spheres, in three passes.
+//  1. Shadow: each globule a disc with exact front depth in the key light's map.
+//  2. Visibility: each globule a point sprite covering its exact screen extent; the
+//     fragment intersects the eye ray with the sphere and writes its true depth and the
+//     globule's id (alpha-to-coverage anti-aliases the silhouette).
+//  3. Shading: one full-screen pass looks up the id of each pixel and shades that sphere.
+// Deferring the shading makes its cost one per pixel instead of one per overlapping
+// sphere (a million globules overlap tens of times), and sprites cost a vertex each.
+// Spheres too large for a sprite (llvmpipe: 255 pixels) are drawn as instanced squares.
+// The globules' arrays are uploaded as they are, and read back by the shading pass
+// through buffer textures: no interleaving copy.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "frame_target.h"
+#include "frame_uniforms.h"
+#include "gl_objects.h"
+#include "globules.h"
+
+namespace globular::detail {
+
+class SpherePass {
+public:
+    /// @param samples of the frame target the passes draw into.
+    explicit SpherePass(int samples);
+    /// Uploads positions, radii and (when @p withSpeed) speeds, and picks the spheres too
+    /// big for a sprite in @p frame's camera or light view.
+    void upload(const Globules& globules, bool withSpeed, const FrameUniforms& frame);
+    void drawShadow(const FrameUniforms& frame) const;
+    void drawVisibility(const FrameUniforms& frame, const FrameTarget& target) const;
+    void drawShading(const FrameUniforms& frame, const FrameTarget& target) const;
+
+    std::size_t count() const { return mCount; }
+    std::size_t squareCount() const { return mSquareCount; }
+
+private:
+    void drawSquares() const;
+
+    int mSamples;
+    float mMaxSprite;  // pixels or texels; bigger spheres are drawn as squares
+    gl::Program mVisibilityPoints, mVisibilitySquares, mShade, mShadowPoints, mShadowSquares;
+    gl::VertexArray mPointArray, mSquareArray, mEmptyArray;
+    std::array<gl::Buffer, 5> mArrays;    // x, y, z, radius, speed
+    std::array<gl::Texture, 5> mTextures;  // the same, as buffer textures
+    gl::Buffer mCorners, mSquares, mSquareIds;
+    std::size_t mCount = 0, mSquareCount = 0;
+};
+
+/// Pixels across the point sprite that covers a sphere of radius @p radius whose centre
+/// is @p viewCenter in view space (camera looking down -z), with the projection's focal
+/// lengths in pixels per unit of x/depth and y/depth; +1 pixel for anti-aliasing.
+/// Infinite when the sphere reaches the near plane @p zNear or 90 degrees off axis.
+/// The point vertex shader computes the same size.
+float spriteSize(Vec3 viewCenter, double radius, double focalX, double focalY, double zNear);
+
+}  // namespace globular::detail
