@@ -12,9 +12,9 @@ namespace {
 // estimate is within a fraction of a percent, and a million-globule frame stays cheap.
 constexpr std::size_t kMaxSamples = 200000;
 
-/// The range of the finite values without their outliers: the kOutlierFraction and
-/// 1 - kOutlierFraction quantiles, widened by kOutlierMargin of their span (so the
-/// genuine extremes of a smooth distribution stay in) and clipped to the values' range.
+/// The range of the finite values without their outliers: the extremes among the values
+/// within kOutlierMargin of a span beyond the kOutlierFraction and 1 - kOutlierFraction
+/// quantiles. The genuine extremes of a smooth distribution stay in; strays far away go.
 bool robustRange(std::vector<float>& values, double& lo, double& hi) {
     std::erase_if(values, [](float v) { return !std::isfinite(v); });
     if (values.empty()) return false;
@@ -25,10 +25,13 @@ bool robustRange(std::vector<float>& values, double& lo, double& hi) {
     const double qLow = values[low];
     std::nth_element(values.begin(), values.begin() + high, values.end());
     const double qHigh = values[high];
-    const auto [smallest, largest] = std::minmax_element(values.begin(), values.end());
     const double margin = kOutlierMargin * (qHigh - qLow);
-    lo = std::max(double(*smallest), qLow - margin);
-    hi = std::min(double(*largest), qHigh + margin);
+    lo = qLow;
+    hi = qHigh;
+    for (float v : values) {
+        if (v >= qLow - margin) lo = std::min(lo, double(v));
+        if (v <= qHigh + margin) hi = std::max(hi, double(v));
+    }
     return true;
 }
 

@@ -1,1 +1,18 @@
-# Tests of globular_render.
+# Tests of globular_render. render_unit_tests need no OpenGL; renderer_tests and
+# render_stage_tests draw through OSMesa (llvmpipe) and compare pixels and goldens
+# (tests/data/render; GLOBULAR_UPDATE_GOLDENS=1 rewrites them, see docs/render.md).
+globular_test(render_unit_tests
+    SOURCES render_settings_test.cpp
+            png_image_test.cpp
+            color_ramp_test.cpp
+            camera_test.cpp
+            scene_extent_test.cpp
+            contact_sheet_test.cpp
+    LIBS globular_render)
+globular_test(renderer_tests
+    SOURCES renderer_test.cpp
+            render_golden_test.cpp
+    LIBS globular_render)
+globular_test(render_stage_tests
+    SOURCES render_stage_test.cpp
+    LIBS globular_render)

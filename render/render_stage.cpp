@@ -1,0 +1,144 @@
+#include "render_stage.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <optional>
+
+#include "camera.h"
+#include "contact_sheet.h"
+#include "errors.h"
+#include "frame_paths.h"
+#include "globule_cache.h"
+#include "mesh_input.h"
+#include "movie.h"
+#include "renderer.h"
+#include "shaders.h"
+
+namespace globular {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+Globules readCache(const fs::path& outDir, int frame) {
+    const fs::path path = cacheVdbPath(outDir, frame);
+    if (!fs::exists(path)) {
+        throw IoError("missing globule cache " + path.string() + " for frame " +
+                      std::to_string(frame) +
+                      ": run the sim stage first (globular run SCENE --stages sim)");
+    }
+    return readGlobuleVdb(path);
+}
+
+TriangleMesh readMesh(const RenderJob& job, const fs::path& outDir, int frame) {
+    return readSurfaceMesh(meshPath(outDir, frame, job.meshFormat), job.meshFormat);
+}
+
+MeshView viewOf(const TriangleMesh& m) {
+    return {m.positions.data(), m.normals.size() == m.positions.size() ? m.normals.data() : nullptr,
+            m.vertexCount(), m.triangles.data(), m.triangleCount()};
+}
+
+void validate(const RenderJob& job, const StageContext& ctx) {
+    job.render.validate();
+    job.camera.validate();
+    for (const LightSettings& light : job.lights) light.validate();
+    if (job.lights.size() > std::size_t(shaders::kMaxLights)) {
+        throw SceneError("[[light]]: " + std::to_string(job.lights.size()) +
+                         " lights given, at most " + std::to_string(shaders::kMaxLights));
+    }
+    if (job.meshFormat != "ply" && job.meshFormat != "obj") {
+        throw SceneError("[surface] key 'mesh_format' = \"" + job.meshFormat +
+                         "\": the render stage reads ply or obj");
+    }
+    if (ctx.firstFrame < 1 || ctx.lastFrame < ctx.firstFrame) {
+        throw SceneError("render stage: frame range " + std::to_string(ctx.firstFrame) + "-" +
+                         std::to_string(ctx.lastFrame) + " is empty or starts before frame 1");
+    }
+}
+
+/// Reads every frame once: what the whole animation occupies.
+SceneExtent animationExtent(const RenderJob& job, const StageContext& ctx) {
+    SceneExtent extent;
+    for (int f = ctx.firstFrame; f <= ctx.lastFrame; ++f) {
+        if (job.render.mode == "surface") {
+            const TriangleMesh mesh = readMesh(job, ctx.outDir, f);
+            extent.addPoints(mesh.positions.data(), mesh.vertexCount());
+        } else {
+            extent.addFrame(readCache(ctx.outDir, f));
+        }
+    }
+    return extent;
+}
+
+FrameSetup frameSetup(const RenderJob& job, const SceneExtent& extent) {
+    FrameSetup setup;
+    setup.render = job.render;
+    setup.lights = job.lights.empty() ? std::vector<LightSettings>{LightSettings{}} : job.lights;
+    setup.groundHeight = job.groundHeight;
+    const double aspect = double(job.render.width) / double(job.render.height);
+    if (job.camera.autoFrame) {
+        setup.camera = autoFrame(extent, job.groundHeight, job.camera.fov, aspect);
+    } else {
+        setup.camera = {job.camera.position, job.camera.target, job.camera.fov};
+    }
+    setup.content = extent.box;
+    if (job.render.rampMax > job.render.rampMin) {
+        setup.ramp.add(job.render.rampMin, job.render.rampMax);
+    } else {
+        setup.ramp = job.render.colorBy == "speed" ? extent.speed : extent.height;
+        if (setup.ramp.empty) setup.ramp.add(0, 1);  // nothing to colour: any range will do
+    }
+    return setup;
+}
+
+void writeSheet(const RenderJob& job, const StageContext& ctx) {
+    const int count = int(job.render.contactSheet);
+    const std::vector<int> frames = evenlySpacedFrames(ctx.firstFrame, ctx.lastFrame, count);
+    std::vector<fs::path> pngs;
+    for (int f : frames) pngs.push_back(framePngPath(ctx.outDir, f));
+    const int columns = job.render.contactColumns > 0 ? int(job.render.contactColumns)
+                                                      : automaticColumns(int(frames.size()));
+    writeContactSheet(pngs, columns, int(job.render.contactTileWidth),
+                      ctx.outDir / "contact_sheet.png");
+    ctx.report().info("render: wrote " + (ctx.outDir / "contact_sheet.png").string());
+}
+
+void writeMovie(const RenderJob& job, const StageContext& ctx) {
+    const fs::path ffmpeg = findOnPath("ffmpeg");
+    if (ffmpeg.empty()) {
+        ctx.report().warn("render: [render] movie = true but ffmpeg is not on PATH; no movie.mp4 "
+                          "(install ffmpeg, or assemble frames/ yourself)");
+        return;
+    }
+    const double fps = job.render.movieFps > 0 ? job.render.movieFps : job.fps;
+    assembleMovie(ffmpeg, ctx.outDir, ctx.firstFrame, ctx.lastFrame, fps);
+    ctx.report().info("render: wrote " + (ctx.outDir / "movie.mp4").string());
+}
+
+}  // namespace
+
+void runRenderStage(const RenderJob& job, const StageContext& ctx) {
+    validate(job, ctx);
+    const long total = ctx.lastFrame - ctx.firstFrame + 1;
+    ctx.report().info("render: measuring " + std::to_string(total) + " frame(s) for framing");
+    const FrameSetup setup = frameSetup(job, animationExtent(job, ctx));
+    Renderer renderer(int(job.render.width), int(job.render.height), int(job.render.samples),
+                      int(job.render.shadowMapSize));
+    ctx.report().progress("render", 0, total);
+    for (int f = ctx.firstFrame; f <= ctx.lastFrame; ++f) {
+        Image image;
+        if (job.render.mode == "surface") {
+            const TriangleMesh mesh = readMesh(job, ctx.outDir, f);
+            image = renderer.drawMesh(viewOf(mesh), setup);
+        } else {
+            image = renderer.drawSpheres(readCache(ctx.outDir, f), setup);
+        }
+        writePng(framePngPath(ctx.outDir, f), image);
+        ctx.report().progress("render", f - ctx.firstFrame + 1, total);
+    }
+    if (job.render.contactSheet > 0) writeSheet(job, ctx);
+    if (job.render.movie) writeMovie(job, ctx);
+}
+
+}  // namespace globular

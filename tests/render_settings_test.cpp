@@ -1,0 +1,127 @@
+#include "render_settings.h"
+
+#include <gtest/gtest.h>
+
+#include "errors.h"
+#include "settings_schema.h"
+
+namespace globular {
+namespace {
+
+SettingValue at(SettingValue::Data data, int line = 3) {
+    return {std::move(data), {"scene.toml", line, 1}};
+}
+
+TEST(RenderSettings, DefaultsAreTheIssuesAndValid) {
+    RenderSettings s;
+    EXPECT_EQ(s.width, 1280);
+    EXPECT_EQ(s.height, 720);
+    EXPECT_EQ(s.mode, "spheres");
+    EXPECT_EQ(s.colorBy, "constant");
+    EXPECT_NO_THROW(s.validate());
+    EXPECT_NO_THROW(CameraSettings{}.validate());
+    EXPECT_NO_THROW(LightSettings{}.validate());
+}
+
+TEST(RenderSettings, KeysBindToFields) {
+    RenderSettings s;
+    SettingsSection section("render");
+    s.describe(section);
+    section.assign("width", at(int64_t(64)));
+    section.assign("mode", at(std::string("surface")));
+    section.assign("color_by", at(std::string("height")));
+    section.assign("color", at(std::vector<double>{1, 0.5, 0}));
+    section.assign("contact_sheet", at(int64_t(6)));
+    section.assign("movie", at(true));
+    EXPECT_EQ(s.width, 64);
+    EXPECT_EQ(s.mode, "surface");
+    EXPECT_EQ(s.colorBy, "height");
+    EXPECT_EQ(s.color, (Vec3{1, 0.5, 0}));
+    EXPECT_EQ(s.contactSheet, 6);
+    EXPECT_TRUE(s.movie);
+}
+
+TEST(RenderSettings, RangesAreCheckedOnAssign) {
+    RenderSettings s;
+    SettingsSection section("render");
+    s.describe(section);
+    EXPECT_THROW(section.assign("width", at(int64_t(0))), SceneError);
+    EXPECT_THROW(section.assign("color", at(std::vector<double>{1.5, 0, 0})), SceneError);
+    EXPECT_THROW(section.assign("mode", at(std::string("voxels"))), SceneError);
+    EXPECT_THROW(section.assign("colour", at(std::vector<double>{1, 1, 1})), SceneError);
+}
+
+TEST(RenderSettings, ValidateNamesTheKeyAndPlace) {
+    RenderSettings s;
+    SettingsSection section("render");
+    s.describe(section);
+    section.assign("samples", at(int64_t(3), 7));
+    try {
+        s.validate(section);
+        FAIL() << "3 samples accepted";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("scene.toml:7:1: [render] key 'samples'"),
+                  std::string::npos)
+            << e.what();
+    }
+    s.samples = 4;
+    s.mode = "surface";
+    s.colorBy = "speed";
+    EXPECT_THROW(s.validate(), SceneError);
+    s.colorBy = "height";
+    s.rampMin = 2;
+    s.rampMax = 1;
+    try {
+        s.validate();
+        FAIL() << "ramp_max below ramp_min accepted";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("'ramp_max'"), std::string::npos) << e.what();
+    }
+}
+
+TEST(CameraSettings, GivenPositionTurnsAutoFrameOff) {
+    CameraSettings c;
+    SettingsSection section("camera");
+    c.describe(section);
+    c.noteGivenKeys(section);
+    EXPECT_TRUE(c.autoFrame);
+    section.assign("position", at(std::vector<double>{1, 2, 3}));
+    c.noteGivenKeys(section);
+    EXPECT_FALSE(c.autoFrame);
+    EXPECT_EQ(c.position, (Vec3{1, 2, 3}));
+}
+
+TEST(CameraSettings, ExplicitAutoFrameWins) {
+    CameraSettings c;
+    SettingsSection section("camera");
+    c.describe(section);
+    section.assign("target", at(std::vector<double>{0, 1, 0}));
+    section.assign("auto_frame", at(true));
+    c.noteGivenKeys(section);
+    EXPECT_TRUE(c.autoFrame);
+}
+
+TEST(CameraSettings, PositionEqualToTargetIsAnError) {
+    CameraSettings c;
+    c.autoFrame = false;
+    c.position = c.target = {1, 1, 1};
+    EXPECT_THROW(c.validate(), SceneError);
+}
+
+TEST(LightSettings, ZeroDirectionIsAnError) {
+    LightSettings l;
+    SettingsSection section("light[0]");
+    l.describe(section);
+    section.assign("direction", at(std::vector<double>{0, 0, 0}, 9));
+    try {
+        l.validate(section);
+        FAIL();
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("scene.toml:9:1: [light[0]] key 'direction'"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace globular

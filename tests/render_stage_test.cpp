@@ -1,0 +1,218 @@
+// The render stage end to end: caches or meshes in, frames, contact sheet and movie out.
+#include "render_stage.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "errors.h"
+#include "frame_paths.h"
+#include "globule_cache.h"
+#include "mesh.h"
+#include "png_image.h"
+#include "renderer.h"
+
+namespace globular {
+namespace {
+
+namespace fs = std::filesystem;
+
+class RecordingReporter final : public Reporter {
+public:
+    void info(std::string_view m) override { infos.emplace_back(m); }
+    void warn(std::string_view m) override { warnings.emplace_back(m); }
+    void progress(std::string_view stage, long done, long total) override {
+        EXPECT_EQ(stage, "render");
+        steps.emplace_back(done, total);
+    }
+    std::vector<std::string> infos, warnings;
+    std::vector<std::pair<long, long>> steps;
+};
+
+/// Frame f: a globule falling onto a resting one; frame 3 is empty.
+Globules frameGlobules(int f) {
+    Globules g;
+    if (f == 3) return g;
+    g.add({0, 0, 0}, {0, 0, 0}, 1.0f, 1, 0);
+    g.add({0.5, 6.0 - f, 0}, {0, -2.0 * f, 0}, 1.0f, 1, 1);
+    return g;
+}
+
+fs::path freshDir(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / "globular_render_stage_test" / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+void writeCaches(const fs::path& dir, int first, int last) {
+    for (int f = first; f <= last; ++f) {
+        writeGlobuleVdb(cacheVdbPath(dir, f), frameGlobules(f), {f, 0.04 * f});
+    }
+}
+
+RenderJob smallJob() {
+    RenderJob job;
+    job.render.width = 64;
+    job.render.height = 48;
+    return job;
+}
+
+StageContext context(const fs::path& dir, int first, int last, Reporter& reporter) {
+    StageContext ctx;
+    ctx.outDir = dir;
+    ctx.firstFrame = first;
+    ctx.lastFrame = last;
+    ctx.reporter = &reporter;
+    return ctx;
+}
+
+TEST(RenderStage, WritesAPngForEachRequestedFrameOnly) {
+    const fs::path dir = freshDir("frames");
+    writeCaches(dir, 1, 5);
+    RecordingReporter reporter;
+    runRenderStage(smallJob(), context(dir, 2, 4, reporter));
+    EXPECT_FALSE(fs::exists(framePngPath(dir, 1)));
+    for (int f = 2; f <= 4; ++f) {
+        const Image image = readPng(framePngPath(dir, f));
+        EXPECT_EQ(image.width, 64);
+        EXPECT_EQ(image.height, 48);
+    }
+    EXPECT_FALSE(fs::exists(framePngPath(dir, 5)));
+    EXPECT_EQ(reporter.steps, (std::vector<std::pair<long, long>>{{0, 3}, {1, 3}, {2, 3}, {3, 3}}));
+    EXPECT_FALSE(fs::exists(dir / "contact_sheet.png"));
+    EXPECT_FALSE(fs::exists(dir / "movie.mp4"));
+}
+
+TEST(RenderStage, FramesAreTheRenderersWithTheGivenCamera) {
+    const fs::path dir = freshDir("camera");
+    writeCaches(dir, 1, 2);
+    RenderJob job = smallJob();
+    job.camera.autoFrame = false;
+    job.camera.position = {0, 3, 14};
+    job.camera.target = {0, 2, 0};
+    RecordingReporter reporter;
+    runRenderStage(job, context(dir, 1, 2, reporter));
+    // The same frame drawn directly, with the stage's whole-animation extent.
+    SceneExtent extent;
+    extent.addFrame(frameGlobules(1));
+    extent.addFrame(frameGlobules(2));
+    FrameSetup setup;
+    setup.render = job.render;
+    setup.camera = {job.camera.position, job.camera.target, job.camera.fov};
+    setup.lights = {LightSettings{}};
+    setup.content = extent.box;
+    setup.ramp = extent.height;
+    Renderer renderer(64, 48, 4);
+    EXPECT_EQ(readPng(framePngPath(dir, 2)).rgba,
+              renderer.drawSpheres(frameGlobules(2), setup).rgba);
+}
+
+TEST(RenderStage, EmptyFrameRendersTheGround) {
+    const fs::path dir = freshDir("empty");
+    writeCaches(dir, 3, 3);
+    RecordingReporter reporter;
+    runRenderStage(smallJob(), context(dir, 3, 3, reporter));
+    const Image image = readPng(framePngPath(dir, 3));
+    // Ground below, background above: the image is not uniform.
+    EXPECT_NE(image.pixel(32, 2)[0], image.pixel(32, 45)[0]);
+}
+
+TEST(RenderStage, MissingCacheNamesTheFileAndTheSimStage) {
+    const fs::path dir = freshDir("missing");
+    writeCaches(dir, 1, 2);
+    RecordingReporter reporter;
+    try {
+        runRenderStage(smallJob(), context(dir, 1, 3, reporter));
+        FAIL();
+    } catch (const IoError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("globules.0003.vdb"), std::string::npos) << message;
+        EXPECT_NE(message.find("sim stage"), std::string::npos) << message;
+    }
+    EXPECT_FALSE(fs::exists(framePngPath(dir, 1)));  // checked before drawing anything
+}
+
+TEST(RenderStage, InvalidSettingsAreSceneErrors) {
+    const fs::path dir = freshDir("invalid");
+    writeCaches(dir, 1, 1);
+    RecordingReporter reporter;
+    RenderJob job = smallJob();
+    job.render.samples = 3;
+    EXPECT_THROW(runRenderStage(job, context(dir, 1, 1, reporter)), SceneError);
+    job = smallJob();
+    job.lights.resize(9);
+    EXPECT_THROW(runRenderStage(job, context(dir, 1, 1, reporter)), SceneError);
+    EXPECT_THROW(runRenderStage(smallJob(), context(dir, 2, 1, reporter)), SceneError);
+}
+
+TEST(RenderStage, ContactSheetTilesEvenlySpacedFrames) {
+    const fs::path dir = freshDir("sheet");
+    writeCaches(dir, 1, 5);
+    RenderJob job = smallJob();
+    job.render.contactSheet = 3;
+    job.render.contactTileWidth = 32;
+    RecordingReporter reporter;
+    runRenderStage(job, context(dir, 1, 5, reporter));
+    const Image sheet = readPng(dir / "contact_sheet.png");
+    EXPECT_EQ(sheet.width, 8 + 3 * (32 + 8));
+    EXPECT_EQ(sheet.height, 8 + 24 + 8);
+}
+
+TEST(RenderStage, SurfaceModeReadsTheMeshes) {
+    const fs::path dir = freshDir("surface");
+    TriangleMesh mesh;
+    mesh.positions = {-2, 0.5, -2, 2, 0.5, -2, 0, 3, 0};
+    mesh.triangles = {0, 2, 1};
+    computeAreaWeightedNormals(mesh);
+    writeMeshPly(meshPath(dir, 1, "ply"), mesh);
+    writeMeshObj(meshPath(dir, 2, "obj"), mesh);
+    RenderJob job = smallJob();
+    job.render.mode = "surface";
+    RecordingReporter reporter;
+    runRenderStage(job, context(dir, 1, 1, reporter));
+    EXPECT_TRUE(fs::exists(framePngPath(dir, 1)));
+    job.meshFormat = "obj";
+    runRenderStage(job, context(dir, 2, 2, reporter));
+    EXPECT_TRUE(fs::exists(framePngPath(dir, 2)));
+    try {
+        runRenderStage(job, context(dir, 3, 3, reporter));
+        FAIL();
+    } catch (const IoError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("surface.0003.obj"), std::string::npos) << message;
+        EXPECT_NE(message.find("surface stage"), std::string::npos) << message;
+    }
+}
+
+TEST(RenderStage, MovieNeedsFfmpegOnPath) {
+    const fs::path dir = freshDir("movie");
+    writeCaches(dir, 1, 3);
+    RenderJob job = smallJob();
+    job.render.movie = true;
+    RecordingReporter reporter;
+    const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
+    ::setenv("PATH", dir.c_str(), 1);  // a PATH without ffmpeg
+    runRenderStage(job, context(dir, 1, 3, reporter));
+    ::setenv("PATH", path.c_str(), 1);
+    EXPECT_FALSE(fs::exists(dir / "movie.mp4"));
+    ASSERT_EQ(reporter.warnings.size(), 1u);
+    EXPECT_NE(reporter.warnings[0].find("ffmpeg"), std::string::npos);
+}
+
+TEST(RenderStage, MovieIsAssembledWithFfmpeg) {
+    if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) GTEST_SKIP() << "no ffmpeg";
+    const fs::path dir = freshDir("movie_ffmpeg");
+    writeCaches(dir, 1, 3);
+    RenderJob job = smallJob();
+    job.render.movie = true;
+    RecordingReporter reporter;
+    runRenderStage(job, context(dir, 1, 3, reporter));
+    ASSERT_TRUE(fs::exists(dir / "movie.mp4"));
+    EXPECT_GT(fs::file_size(dir / "movie.mp4"), 500u);
+    EXPECT_TRUE(reporter.warnings.empty());
+}
+
+}  // namespace
+}  // namespace globular

@@ -1,0 +1,289 @@
+#include "renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "color_ramp.h"
+#include "errors.h"
+#include "gl_context.h"
+
+namespace globular {
+namespace {
+
+constexpr int kWidth = 320, kHeight = 240;
+
+std::array<int, 3> rgb(const Image& image, int x, int y) {
+    const uint8_t* p = image.pixel(x, y);
+    return {p[0], p[1], p[2]};
+}
+
+int srgbByte(double linear) { return int(std::lround(255 * linearToSrgb(linear))); }
+
+void expectColor(const Image& image, int x, int y, std::array<int, 3> expected, int tolerance) {
+    const auto got = rgb(image, x, y);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(got[c], expected[c], tolerance) << "pixel (" << x << ", " << y << ") channel " << c;
+    }
+}
+
+/// A camera on +z looking at the origin with a 90 degree vertical field of view, a white
+/// light shining from the camera, no sky light, no highlight, no ground: a sphere's
+/// centre pixel is then exactly its base colour.
+FrameSetup flatSetup() {
+    FrameSetup s;
+    s.camera = {{0, 0, 10}, {0, 0, 0}, 90};
+    LightSettings light;
+    light.direction = {0, 0, -1};
+    light.color = {1, 1, 1};
+    light.intensity = 1;
+    light.shadows = false;
+    s.lights = {light};
+    s.render.ambient = 0;
+    s.render.specular = 0;
+    s.render.ground = false;
+    s.render.color = {0.8, 0.3, 0.2};  // sRGB bytes 204, 77, 51
+    s.render.background = {1, 1, 1};
+    return s;
+}
+
+constexpr std::array<int, 3> kBase{204, 77, 51}, kWhite{255, 255, 255};
+
+Globules oneSphere(Vec3 center, float radius) {
+    Globules g;
+    g.add(center, {}, radius, 1, 0);
+    return g;
+}
+
+/// Whether more than half of pixel (x, y) is covered by a sphere drawn over the white
+/// background. Sphere pixels have green at most 77 (however they are lit); half covered,
+/// the linear mean of white and such a colour is about 190 in sRGB.
+bool covered(const Image& image, int x, int y) { return image.pixel(x, y)[1] < 190; }
+
+int widthOnRow(const Image& image, int y) {
+    int count = 0;
+    for (int x = 0; x < image.width; ++x) count += covered(image, x, y);
+    return count;
+}
+
+TEST(GlContext, IsAnOpenGlCoreProfile) {
+    const std::string description = glContextDescription();
+    EXPECT_NE(description.find("Core Profile"), std::string::npos) << description;
+}
+
+TEST(Renderer, OneSphereIsADiscOfItsColourAtItsProjectedPlace) {
+    Renderer renderer(kWidth, kHeight, 4);
+    const FrameSetup setup = flatSetup();
+    const Image image = renderer.drawSpheres(oneSphere({0, 0, 0}, 1), setup);
+    ASSERT_EQ(image.width, kWidth);
+    ASSERT_EQ(image.height, kHeight);
+    // The sphere's silhouette: tangent cone half-angle asin(r / d), so on screen a disc
+    // of radius tan(asin(0.1)) / tan(45 degrees) * 120 pixels = 12.06 pixels.
+    const double radius = std::tan(std::asin(0.1)) * kHeight / 2;
+    expectColor(image, kWidth / 2, kHeight / 2, kBase, 1);
+    EXPECT_NEAR(widthOnRow(image, kHeight / 2), 2 * radius, 1.0);
+    int height = 0;
+    for (int y = 0; y < kHeight; ++y) height += covered(image, kWidth / 2, y);
+    EXPECT_NEAR(height, 2 * radius, 1.0);
+    expectColor(image, kWidth / 2, kHeight / 2 - 14, kWhite, 0);
+    expectColor(image, 5, 5, kWhite, 0);
+}
+
+TEST(Renderer, OffCentreSphereLandsWhereThePerspectiveSays) {
+    Renderer renderer(kWidth, kHeight, 4);
+    const Image image = renderer.drawSpheres(oneSphere({3, 1.5, 0}, 1), flatSetup());
+    // Exact silhouette extent along x: the tangents from the eye to the circle of radius 1
+    // at (3, depth 10) in the x-z plane.
+    const double theta = std::atan2(3.0, 10.0), alpha = std::asin(1 / std::sqrt(109.0));
+    const double focal = kHeight / 2.0;  // pixels per unit of x/depth (90 degrees)
+    const double left = kWidth / 2.0 + std::tan(theta - alpha) * focal;
+    const double right = kWidth / 2.0 + std::tan(theta + alpha) * focal;
+    const int row = int(std::lround(kHeight / 2.0 - 1.5 / 10 * focal));
+    int first = -1, last = -1;
+    for (int x = 0; x < kWidth; ++x) {
+        if (covered(image, x, row)) {
+            if (first < 0) first = x;
+            last = x;
+        }
+    }
+    EXPECT_NEAR(first, left, 1.0);
+    EXPECT_NEAR(last + 1, right, 1.0);
+}
+
+TEST(Renderer, SilhouettesAreAntiAliased) {
+    auto partialPixels = [](const Image& image) {
+        int partial = 0;
+        for (int y = 0; y < kHeight; ++y) {
+            for (int x = 0; x < kWidth; ++x) {
+                const int g = image.pixel(x, y)[1];
+                partial += g > 100 && g < 245;  // neither sphere (<= 77) nor background
+            }
+        }
+        return partial;
+    };
+    Renderer smooth(kWidth, kHeight, 4);
+    // The edge of a disc 24 pixels across crosses about 75 pixels.
+    EXPECT_GT(partialPixels(smooth.drawSpheres(oneSphere({0, 0, 0}, 1), flatSetup())), 40);
+    Renderer aliased(kWidth, kHeight, 1);
+    EXPECT_EQ(partialPixels(aliased.drawSpheres(oneSphere({0, 0, 0}, 1), flatSetup())), 0);
+}
+
+TEST(Renderer, ColourByHeightFollowsTheRamp) {
+    Renderer renderer(kWidth, kHeight, 1);
+    FrameSetup setup = flatSetup();
+    setup.render.colorBy = "height";
+    setup.ramp.add(-1, 1);
+    // Spheres whose centres project onto the centres of pixels (112, 108) and (208, 132):
+    // that pixel's ray meets the point facing the eye, lit by the angle between its
+    // normal and the light (along -z).
+    auto centerAt = [](int x, int y) {
+        return Vec3{(x + 0.5 - kWidth / 2.0) / (kHeight / 2.0) * 10,
+                    (kHeight / 2.0 - y - 0.5) / (kHeight / 2.0) * 10, 0};
+    };
+    const Vec3 a = centerAt(112, 108), b = centerAt(208, 132);
+    Globules g = oneSphere(a, 0.5f);
+    g.add(b, {}, 0.5f, 1, 1);
+    const Image image = renderer.drawSpheres(g, setup);
+    auto expected = [](Vec3 center) {
+        const double lit = normalized(Vec3{0, 0, 10} - center).z;
+        const Vec3 c = srgbToLinear(rampColor((center.y + 1) / 2)) * lit;
+        return std::array<int, 3>{srgbByte(c.x), srgbByte(c.y), srgbByte(c.z)};
+    };
+    expectColor(image, 112, 108, expected(a), 2);
+    expectColor(image, 208, 132, expected(b), 2);
+}
+
+TEST(Renderer, ColourBySpeedFollowsTheRamp) {
+    Renderer renderer(kWidth, kHeight, 1);
+    FrameSetup setup = flatSetup();
+    setup.render.colorBy = "speed";
+    setup.ramp.add(0, 10);
+    Globules g;
+    g.add({0, 0, 0}, {3, 4, 0}, 1, 1, 0);  // speed 5: the middle of the ramp
+    const Image image = renderer.drawSpheres(g, setup);
+    const Vec3 c = rampColor(0.5);
+    expectColor(image, kWidth / 2, kHeight / 2,
+                {int(std::lround(255 * c.x)), int(std::lround(255 * c.y)), int(std::lround(255 * c.z))},
+                2);
+}
+
+TEST(Renderer, NonFiniteGlobulesAreSkipped) {
+    Renderer renderer(kWidth, kHeight, 4);
+    Globules g = oneSphere({0, 0, 0}, 1);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    g.add({0, 0, 0}, {}, 1, 1, 1);
+    g.px.back() = nan;
+    g.add({2, 0, 0}, {}, 1, 1, 2);
+    g.radius.back() = std::numeric_limits<float>::infinity();
+    g.add({-2, 0, 0}, {}, 0, 1, 3);  // no radius: nothing to draw
+    const Image image = renderer.drawSpheres(g, flatSetup());
+    const Image reference = renderer.drawSpheres(oneSphere({0, 0, 0}, 1), flatSetup());
+    EXPECT_EQ(image.rgba, reference.rgba);
+}
+
+TEST(Renderer, EmptyFrameShowsTheGroundAlone) {
+    Renderer renderer(kWidth, kHeight, 4);
+    FrameSetup setup;
+    setup.camera = {{0, 4, 12}, {0, 0, 0}, 40};
+    setup.lights = {LightSettings{}};
+    const Image image = renderer.drawSpheres(Globules{}, setup);
+    // Sky: the background exactly.
+    const Vec3 bg = setup.render.background;
+    expectColor(image, kWidth / 2, 2,
+                {int(std::lround(255 * bg.x)), int(std::lround(255 * bg.y)),
+                 int(std::lround(255 * bg.z))},
+                1);
+    // Ground in front of the camera: lit ground colour, light or dark checker square.
+    const Vec3 ground = srgbToLinear(setup.render.groundColor);
+    const Vec3 toward = normalized(-1.0 * LightSettings{}.direction);
+    const Vec3 light = srgbToLinear(LightSettings{}.color);
+    const double ambient = setup.render.ambient;
+    const auto [r, g, b] = rgb(image, kWidth / 2, kHeight - 3);
+    const double lit = ambient + light.x * toward.y;  // red channel
+    EXPECT_LE(r, srgbByte(ground.x * lit) + 1);
+    EXPECT_GE(r, srgbByte(ground.x * lit * (1 - 0.12)) - 1);
+    EXPECT_GT(g, 0);
+    EXPECT_GT(b, 0);
+}
+
+TEST(Renderer, KeyLightCastsAShadowOnTheGround) {
+    Renderer renderer(kWidth, kHeight, 4);
+    FrameSetup setup;
+    setup.camera = {{0, 12, 12}, {0, 0, 0}, 40};
+    LightSettings sun;
+    sun.direction = {0, -1, 0};  // straight down: the shadow lies under the sphere
+    sun.color = {1, 1, 1};
+    setup.lights = {sun};
+    setup.render.checkerSize = 1000;  // one checker square: a uniform ground
+    const Globules g = oneSphere({0, 3, 0}, 1);
+    Bounds3 content;
+    content.add(Vec3{-4, 0, -4});
+    content.add(Vec3{4, 4, 4});
+    setup.content = content;
+    const Image image = renderer.drawSpheres(g, setup);
+    const Mat4 viewProj = perspective(40, double(kWidth) / kHeight, 0.1, 100) *
+                          lookAt(setup.camera.position, setup.camera.target);
+    auto pixelOf = [&](Vec3 p) {
+        const Vec4 c = transformPoint(viewProj, p);
+        return std::pair<int, int>{int((c.x / c.w + 1) / 2 * kWidth),
+                                   int((1 - c.y / c.w) / 2 * kHeight)};
+    };
+    const Vec3 ground = srgbToLinear(setup.render.groundColor);
+    const auto [sx, sy] = pixelOf({0, 0, 0.6});   // in the shadow, in front of the sphere
+    const auto [lx, ly] = pixelOf({3, 0, 0});     // in the sun
+    const double ambient = setup.render.ambient;
+    // Light squares of the checker are the ground colour itself (checker 0 there).
+    expectColor(image, sx, sy,
+                {srgbByte(ground.x * ambient), srgbByte(ground.y * ambient),
+                 srgbByte(ground.z * ambient)},
+                3);
+    EXPECT_NEAR(rgb(image, lx, ly)[0], srgbByte(ground.x * (ambient + 1)), 3);
+}
+
+TEST(Renderer, MeshCoversItsProjection) {
+    Renderer renderer(kWidth, kHeight, 4);
+    // A square of side 2 facing the camera at z = 0: at distance 10 with 90 degrees it
+    // spans 2 / 20 of the image height, centred.
+    const float positions[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+    const float normals[] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    const uint32_t triangles[] = {0, 1, 2, 0, 2, 3};
+    const MeshView mesh{positions, normals, 4, triangles, 2};
+    const Image image = renderer.drawMesh(mesh, flatSetup());
+    expectColor(image, kWidth / 2, kHeight / 2, kBase, 1);
+    EXPECT_NEAR(widthOnRow(image, kHeight / 2), 0.1 * kHeight, 1.0);
+    // Without normals the faces' own normal gives the same flat square.
+    const MeshView faceted{positions, nullptr, 4, triangles, 2};
+    expectColor(renderer.drawMesh(faceted, flatSetup()), kWidth / 2, kHeight / 2, kBase, 1);
+}
+
+TEST(Renderer, MeshIndexOutOfRangeIsAnError) {
+    Renderer renderer(64, 48, 1);
+    const float positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const uint32_t triangles[] = {0, 1, 3};
+    EXPECT_THROW(renderer.drawMesh({positions, nullptr, 3, triangles, 1}, flatSetup()), Error);
+}
+
+TEST(Renderer, UnsupportedSampleCountIsAClearError) {
+    try {
+        Renderer renderer(64, 48, 64);
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("samples"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Renderer, BigSpheresAreDrawnAsSquaresIdentically) {
+    // Close to the camera a sphere outgrows a point sprite; the square path must give
+    // the same disc as a far, small sphere scaled up.
+    Renderer renderer(kWidth, kHeight, 4);
+    FrameSetup setup = flatSetup();
+    const Image image = renderer.drawSpheres(oneSphere({0, 0, 0}, 5), setup);
+    const double radius = std::tan(std::asin(0.5)) * kHeight / 2;  // 69 pixels
+    EXPECT_NEAR(widthOnRow(image, kHeight / 2), 2 * radius, 1.0);
+    expectColor(image, kWidth / 2, kHeight / 2, kBase, 1);
+}
+
+}  // namespace
+}  // namespace globular
