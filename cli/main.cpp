@@ -10,6 +10,7 @@
 #include "errors.h"
 #include "globular_version.h"
 #include "run_command.h"
+#include "scene.h"
 
 namespace {
 
@@ -39,6 +40,9 @@ int main(int argc, char** argv) {
     runCmd->add_flag("--resume", run.resume, "continue an interrupted run in --out");
     runCmd->add_flag("--quiet,-q", quiet, "only warnings and errors");
 
+    CLI::App* keysCmd = app.add_subcommand(
+        "keys", "print every scene key with its default and meaning (Markdown)");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -47,6 +51,7 @@ int main(int argc, char** argv) {
 
     globular::ConsoleReporter reporter(stderr, quiet);
     try {
+        if (keysCmd->parsed()) std::fputs(globular::sceneKeysMarkdown().c_str(), stdout);
         if (runCmd->parsed()) {
             run.stages.clear();
             std::stringstream list(stages);

@@ -69,6 +69,10 @@ struct SceneSections {
 SceneSections bindSections(Scene& scene,
                            const std::vector<std::pair<std::string, std::size_t>>& arraySizes);
 
+/// Every section and key with its default and documentation, as a Markdown table: what
+/// `globular keys` prints and the README's scene reference shows.
+std::string sceneKeysMarkdown();
+
 /// Cross-field checks of every section. @throw SceneError naming file and key.
 void validateScene(const Scene& scene, const SceneSections& sections, Reporter& reporter);
 

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <cstdio>
 #include <fstream>
+#include <functional>
 #include <functional>
 #include <sstream>
 
@@ -16,6 +19,7 @@
 namespace globular {
 
 namespace {
+
 
 struct OverridePlaces {
     std::vector<std::pair<std::string, std::string>> byPath;  ///< "material.b1" -> "--set ..."
@@ -92,6 +96,34 @@ void bindTable(const toml::table& table, SettingsSection& section, const std::st
     }
 }
 
+/// Whether @p text is well-formed UTF-8, as TOML requires: toml++ checks what it parses,
+/// but a bare --set word becomes a string unparsed and must not make the resolved scene
+/// unreadable.
+bool isUtf8(const std::string& text) {
+    static constexpr char32_t kLeast[] = {0, 0, 0x80, 0x800, 0x10000};  // no overlong forms
+    std::size_t i = 0;
+    while (i < text.size()) {
+        const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+        const unsigned char lead = byte(i);
+        const std::size_t n = lead < 0x80                    ? 1
+                              : lead >= 0xC2 && lead <= 0xDF ? 2
+                              : lead >= 0xE0 && lead <= 0xEF ? 3
+                              : lead >= 0xF0 && lead <= 0xF4 ? 4
+                                                             : 0;
+        if (n == 0 || text.size() - i < n) return false;
+        char32_t code = n == 1 ? lead : lead & (0x3Fu >> (n - 1));
+        for (std::size_t k = 1; k < n; ++k) {
+            if ((byte(i + k) & 0xC0) != 0x80) return false;
+            code = (code << 6) | (byte(i + k) & 0x3F);
+        }
+        if (code < kLeast[n] || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) {
+            return false;
+        }
+        i += n;
+    }
+    return true;
+}
+
 /// Parses "a.b.c=value" and writes value at that path of @p root.
 void applyOverride(toml::table& root, const std::string& text, OverridePlaces& places) {
     const std::string where = "--set " + text;
@@ -112,6 +144,7 @@ void applyOverride(toml::table& root, const std::string& text, OverridePlaces& p
     try {
         holder = toml::parse("v = " + valueText);
     } catch (const toml::parse_error&) {
+        if (!isUtf8(valueText)) throw SceneError(where + ": the value is not valid UTF-8");
         holder = toml::table{{"v", valueText}};
     }
     toml::table* table = &root;
@@ -152,49 +185,47 @@ std::string arrayIndexPath(const std::string& name, std::size_t index) {
     return name + "." + std::to_string(index);
 }
 
-/// Whether @p key of an [[emitter]] is read by its type. EmitterSettings::validate is the
-/// one place that knows; ask it with only @p key marked as set. (A resolved scene listing
-/// `rate` for a helix would be rejected when read back.)
-bool emitterKeyApplies(const EmitterSettings& element, const std::string& key) {
-    EmitterSettings probe = element;
-    SettingsSection section("emitter");
-    probe.describe(section);
-    NullReporter quiet;
-    try {
-        probe.validate(section, quiet);
-    } catch (const SceneError&) {
-        return true;  // inconsistent for another reason: keep every key, hide nothing
+/// A value as TOML text. Floats use the shortest form that reads back to the same double
+/// (9.8, not 9.8000000000000007), so the resolved scene reproduces the run exactly.
+std::string tomlText(const SettingValue::Data& data) {
+    const auto number = [](double v) {
+        char buffer[64];
+        const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
+        std::string text(buffer, end);
+        if (text.find_first_of(".en") == std::string::npos) text += ".0";  // stay a float
+        return text;
+    };
+    if (auto* b = std::get_if<bool>(&data)) return *b ? "true" : "false";
+    if (auto* i = std::get_if<int64_t>(&data)) return std::to_string(*i);
+    if (auto* d = std::get_if<double>(&data)) return number(*d);
+    if (auto* a = std::get_if<std::vector<double>>(&data)) {
+        std::string text = "[";
+        for (std::size_t k = 0; k < a->size(); ++k) text += (k ? ", " : "") + number((*a)[k]);
+        return text + "]";
     }
-    for (const auto& [k, data] : section.values()) {
-        if (k == key) section.assign(k, SettingValue{data, SourcePlace{"<resolved scene>"}});
+    std::string quoted = "\"";
+    for (char c : std::get<std::string>(data)) {
+        if (c == '"' || c == '\\') {
+            quoted += '\\';
+            quoted += c;
+        } else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {  // TOML forbids raw DEL
+            char escape[8];
+            std::snprintf(escape, sizeof escape, "\\u%04x", c);
+            quoted += escape;
+        } else {
+            quoted += c;
+        }
     }
-    try {
-        probe.validate(section, quiet);
-    } catch (const SceneError&) {
-        return false;
-    }
-    return true;
+    return quoted + "\"";
 }
 
-toml::table sectionToToml(const SettingsSection& section,
-                          const std::function<bool(const std::string&)>& keep) {
-    toml::table table;
+std::string sectionText(const SettingsSection& section,
+                        const std::function<bool(const std::string&)>& keep) {
+    std::string text;
     for (const auto& [key, data] : section.values()) {
-        if (!keep(key)) continue;
-        std::visit(
-            [&](const auto& v) {
-                using T = std::decay_t<decltype(v)>;
-                if constexpr (std::is_same_v<T, std::vector<double>>) {
-                    toml::array array;
-                    for (double x : v) array.push_back(x);
-                    table.insert(key, array);
-                } else {
-                    table.insert(key, v);
-                }
-            },
-            data);
+        if (keep(key)) text += key + " = " + tomlText(data) + "\n";
     }
-    return table;
+    return text;
 }
 
 }  // namespace
@@ -267,30 +298,50 @@ std::string resolvedSceneToml(const Scene& constScene) {
     Scene scene = constScene;  // sections bind mutable fields; write from a copy
     std::vector<std::pair<std::string, std::size_t>> sizes;
     SceneSections sections = bindSections(scene, sizes);
-    toml::table root;
-    const auto everyKey = [](const std::string&) { return true; };
-    for (const auto& section : sections.singles) {
-        root.insert(section.name(), sectionToToml(section, everyKey));
-    }
-    for (const auto& [name, elements] : sections.arrays) {
-        toml::array array;
-        for (std::size_t i = 0; i < elements.size(); ++i) {
-            if (name == "emitter") {
-                const EmitterSettings& emitter = scene.emitters[i];
-                array.push_back(sectionToToml(elements[i], [&](const std::string& key) {
-                    return emitterKeyApplies(emitter, key);
-                }));
-            } else {
-                array.push_back(sectionToToml(elements[i], everyKey));
-            }
-        }
-        root.insert(name, array);
-    }
     std::ostringstream out;
     out << "# The resolved scene: every key with the value the run used.\n"
         << "# Source: " << (scene.file.empty() ? "<default scene>" : scene.file.string())
-        << "\n\n"
-        << root << "\n";
+        << "\n";
+    const auto everyKey = [](const std::string&) { return true; };
+    for (const auto& section : sections.singles) {
+        out << "\n[" << section.name() << "]\n" << sectionText(section, everyKey);
+    }
+    for (const auto& [name, elements] : sections.arrays) {
+        for (std::size_t i = 0; i < elements.size(); ++i) {
+            out << "\n[[" << name << "]]\n";
+            if (name == "emitter") {
+                const EmitterSettings& emitter = scene.emitters[i];
+                out << sectionText(elements[i], [&](const std::string& key) {
+                    return emitterKeyApplies(emitter.type, key);
+                });
+            } else {
+                out << sectionText(elements[i], everyKey);
+            }
+        }
+    }
+    return out.str();
+}
+
+
+std::string sceneKeysMarkdown() {
+    Scene scene;
+    SceneSections sections = bindSections(scene, {});
+    std::ostringstream out;
+    const auto table = [&](const std::string& heading, const SettingsSection& section,
+                           const std::string& type) {
+        out << "\n#### `" << heading << "`\n\n| key | default | meaning |\n|---|---|---|\n";
+        for (const auto& [key, data] : section.values()) {
+            if (!type.empty() && !emitterKeyApplies(type, key)) continue;
+            out << "| `" << key << "` | `" << tomlText(data) << "` | " << section.docOf(key)
+                << " |\n";
+        }
+    };
+    for (const auto& section : sections.singles) table("[" + section.name() + "]", section, "");
+    const SettingsSection& emitter = sections.array("emitter")->front();
+    for (const char* type : {"helix", "box", "spout", "points"}) {
+        table(std::string("[[emitter]] type = \"") + type + "\"", emitter, type);
+    }
+    table("[[light]]", sections.array("light")->front(), "");
     return out.str();
 }
 

@@ -224,6 +224,13 @@ std::vector<std::pair<std::string, SettingValue::Data>> SettingsSection::values(
     return out;
 }
 
+std::string SettingsSection::docOf(const std::string& key) const {
+    for (const auto& e : mEntries) {
+        if (e.key == key) return e.doc;
+    }
+    return "";
+}
+
 const SourcePlace* SettingsSection::placeOf(const std::string& key) const {
     auto it = mPlaces.find(key);
     return it == mPlaces.end() ? nullptr : &it->second;

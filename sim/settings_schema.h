@@ -71,6 +71,8 @@ public:
     std::vector<std::string> keys() const;
     /// The current value of every key, in declaration order, for the resolved scene.
     std::vector<std::pair<std::string, SettingValue::Data>> values() const;
+    /// The one-line documentation of @p key ("" when unknown).
+    std::string docOf(const std::string& key) const;
     /// Where @p key was set, or nullptr when it kept its default.
     const SourcePlace* placeOf(const std::string& key) const;
     /// "[material] key 'b1'" plus its place when it was set: for validation messages.
