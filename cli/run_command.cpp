@@ -10,6 +10,7 @@
 #include "atomic_file.h"
 #include "default_scene.h"
 #include "errors.h"
+#include "render_stage.h"
 #include "reporter.h"
 #include "scene.h"
 #include "sim_stage.h"
@@ -96,6 +97,14 @@ void runScene(const RunOptions& options, Reporter& reporter) {
         reporter.info("surface: frames " + std::to_string(range.first) + "-" +
                       std::to_string(range.last));
         runSurfaceStage(scene.surface, ctx);
+    }
+    if (wants(options.stages, "render")) {
+        reporter.info("render: frames " + std::to_string(range.first) + "-" +
+                      std::to_string(range.last));
+        const RenderJob job{scene.render,         scene.camera,
+                            scene.lights,         scene.ground.enabled ? scene.ground.height : 0,
+                            scene.surface.meshFormat, scene.simulation.fps};
+        runRenderStage(job, ctx);
     }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
