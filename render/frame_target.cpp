@@ -33,8 +33,8 @@ FrameTarget::FrameTarget(int width, int height, int samples)
     glRenderbufferStorageMultisample(GL_RENDERBUFFER, multi ? samples : 0, GL_RGBA16F, width,
                                      height);
     glBindRenderbuffer(GL_RENDERBUFFER, mDepth.id());
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, multi ? samples : 0,
-                                     GL_DEPTH_COMPONENT24, width, height);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, multi ? samples : 0, GL_DEPTH24_STENCIL8,
+                                     width, height);
     const GLenum idTarget = multi ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
     glBindTexture(idTarget, mIds.id());
     if (multi) {
@@ -50,7 +50,8 @@ FrameTarget::FrameTarget(int width, int height, int samples)
     glBindFramebuffer(GL_FRAMEBUFFER, mDraw.id());
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, mColor.id());
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, idTarget, mIds.id(), 0);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, mDepth.id());
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                              mDepth.id());
     checkComplete("frame buffer", width, height, samples);
 
     glBindRenderbuffer(GL_RENDERBUFFER, mResolvedColor.id());
@@ -71,10 +72,9 @@ void FrameTarget::bindAndClear(Vec3 background) const {
     glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     const float color[] = {float(background.x), float(background.y), float(background.z), 1};
     const GLuint noId[] = {0, 0, 0, 0};
-    const float far = 1.0f;
     glClearBufferfv(GL_COLOR, 0, color);
     glClearBufferuiv(GL_COLOR, 1, noId);
-    glClearBufferfv(GL_DEPTH, 0, &far);
+    glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
     drawColor();
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 // Internal to render/: where a frame is drawn. Linear-light colour in half floats
-// (multisampled when asked), depth, and an id buffer that the sphere pass fills with the
-// index of the globule seen at each sample; resolved and read back as floats.
+// (multisampled when asked), depth and stencil, and an id buffer that the sphere pass
+// fills with the index of the globule seen at each sample; resolved and read back as
+// floats. The stencil marks the samples a sphere covers, so the full-screen shading pass
+// runs only there.
 
 #include <vector>
 
@@ -15,7 +17,7 @@ public:
     /// @throw Error when the driver cannot make such a framebuffer.
     FrameTarget(int width, int height, int samples);
 
-    /// Binds the target; clears colour to @p background (linear), depth and ids.
+    /// Binds the target; clears colour to @p background (linear), depth, stencil and ids.
     void bindAndClear(Vec3 background) const;
     /// Draw into colour only (shading, ground, meshes).
     void drawColor() const;

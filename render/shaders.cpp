@@ -4,7 +4,7 @@ namespace globular::shaders {
 
 namespace {
 
-const char* const kVersion = "#version 400 core\n#define MAX_LIGHTS 8\n";
+const char* const kVersion = "#version 420 core\n#define MAX_LIGHTS 8\n";
 
 // Maps a per-globule or per-vertex value to a base colour (linear light).
 const char* const kColorLibrary = R"(

@@ -8,7 +8,7 @@ namespace globular::shaders {
 
 inline constexpr int kMaxLights = 8;
 
-/// "#version 400 core" and the defines every source starts with.
+/// "#version 420 core" and the defines every source starts with.
 std::string version();
 /// @p body after the version, the colour ramp and the lighting functions (shade()).
 std::string fragment(const std::string& body);
@@ -26,7 +26,7 @@ std::string groundFragment();
 std::string spherePointVertex();
 std::string sphereQuadVertex();
 std::string sphereVisibilityFragment();
-std::string fullScreenVertex();
+std::string tileVertex();
 /// @param samples of the id buffer it reads (1: not multisampled).
 std::string sphereShadeFragment(int samples);
 std::string sphereShadowPointVertex();

@@ -13,8 +13,7 @@ ShadowMap::ShadowMap(int maxSize)
 }
 
 int ShadowMap::sizeFor(double worldSize, double pixelWorldSize) const {
-    // 0.75: a little finer than a pixel, so shadow edges stay crisp under filtering.
-    const double texel = 0.75 * std::max(pixelWorldSize, 1e-12);
+    const double texel = std::max(pixelWorldSize, 1e-12);
     const double wanted = std::ceil(worldSize / texel / 64) * 64;
     return int(std::clamp(wanted, double(std::min(512, mMaxSize)), double(mMaxSize)));
 }

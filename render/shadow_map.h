@@ -11,7 +11,7 @@ public:
     /// @param maxSize the most texels per side a frame may use
     explicit ShadowMap(int maxSize);
     /// Texels per side for content of @p worldSize (world units across) seen with pixels of
-    /// @p pixelWorldSize: about 1.3 texels per pixel, as finer detail is never seen and
+    /// @p pixelWorldSize: about one texel per pixel, as finer detail is never seen and
     /// costs fill (a million globules cover the map many times over), within
     /// [min(512, maxSize), maxSize].
     int sizeFor(double worldSize, double pixelWorldSize) const;

@@ -17,6 +17,8 @@ enum Array { kX, kY, kZ, kRadius, kSpeed };
 // so a float difference between this file and the shader cannot lose a sphere.
 constexpr float kSpriteMargin = 10;
 
+constexpr int kTile = 16;  // pixels per side of a shading tile
+
 void uploadFloats(const gl::Buffer& buffer, const float* data, std::size_t n) {
     glBindBuffer(GL_ARRAY_BUFFER, buffer.id());
     // Orphan and refill: the driver need not wait for the previous frame's draw.
@@ -54,7 +56,7 @@ SpherePass::SpherePass(int samples)
                         shaders::sphereVisibilityFragment()),
       mVisibilitySquares("sphere square", shaders::sphereQuadVertex(),
                          shaders::sphereVisibilityFragment()),
-      mShade("sphere shading", shaders::fullScreenVertex(),
+      mShade("sphere shading", shaders::tileVertex(),
              shaders::sphereShadeFragment(samples)),
       mShadowPoints("sphere shadow sprite", shaders::sphereShadowPointVertex(),
                     shaders::sphereShadowFragment(true)),
@@ -62,14 +64,15 @@ SpherePass::SpherePass(int samples)
                      shaders::sphereShadowFragment(false)),
       mPointArray(gl::makeVertexArray()),
       mSquareArray(gl::makeVertexArray()),
-      mEmptyArray(gl::makeVertexArray()),
+      mTileArray(gl::makeVertexArray()),
       mArrays{gl::makeBuffer(), gl::makeBuffer(), gl::makeBuffer(), gl::makeBuffer(),
               gl::makeBuffer()},
       mTextures{gl::makeTexture(), gl::makeTexture(), gl::makeTexture(), gl::makeTexture(),
                 gl::makeTexture()},
       mCorners(gl::makeBuffer()),
       mSquares(gl::makeBuffer()),
-      mSquareIds(gl::makeBuffer()) {
+      mSquareIds(gl::makeBuffer()),
+      mTiles(gl::makeBuffer()) {
     float pointSizes[2] = {1, 64};
     glGetFloatv(GL_POINT_SIZE_RANGE, pointSizes);
     mMaxSprite = std::min(250.0f, pointSizes[1] - 2.0f);
@@ -94,6 +97,10 @@ SpherePass::SpherePass(int samples)
     glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, 0, nullptr);
     glVertexAttribDivisor(2, 1);
     glEnableVertexAttribArray(2);
+    glBindVertexArray(mTileArray.id());
+    glBindBuffer(GL_ARRAY_BUFFER, mTiles.id());
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glEnableVertexAttribArray(0);
     glBindVertexArray(0);
     gl::checkErrors("setting up the sphere passes");
 }
@@ -120,23 +127,35 @@ void SpherePass::upload(const Globules& g, bool withSpeed, const FrameUniforms& 
     }
     glBindTexture(GL_TEXTURE_BUFFER, 0);
 
-    // The few spheres too big for a sprite, in the camera's view or the light's.
-    std::vector<float> squares;
+    // The few spheres too big for a sprite, in the camera's view or the light's; and the
+    // screen rectangle of every sprite, for the shading tiles.
+    std::vector<float> squares, rects;
     std::vector<uint32_t> ids;
+    rects.reserve(4 * n);
     const float limit = mMaxSprite - kSpriteMargin;
     const Mat4& view = f.view;
+    bool everywhere = false;  // a sphere reaching the near plane: shade everything
     for (std::size_t i = 0; i < n; ++i) {
         const float x = g.px[i], y = g.py[i], z = g.pz[i], r = g.radius[i];
         if (!finite(x, y, z, r)) continue;  // the shaders skip these
         const Vec3 v{view(0, 0) * x + view(0, 1) * y + view(0, 2) * z + view(0, 3),
                      view(1, 0) * x + view(1, 1) * y + view(1, 2) * z + view(1, 3),
                      view(2, 0) * x + view(2, 1) * y + view(2, 2) * z + view(2, 3)};
-        const bool bigInLight = f.shadowed && 2.0f * r * f.texelsPerUnit + 2.0f > limit;
-        if (bigInLight ||
-            !(spriteSize(v, r, f.focalPixels[0], f.focalPixels[1], f.zNear) <= limit)) {
+        const bool bigInLight = f.shadowed && 2.0f * r * f.texelsPerUnit + 1.0f > limit;
+        const float size = spriteSize(v, r, f.focalPixels[0], f.focalPixels[1], f.zNear);
+        if (bigInLight || !(size <= limit)) {
             squares.insert(squares.end(), {x, y, z, r});
             ids.push_back(uint32_t(i + 1));
         }
+        if (!std::isfinite(size)) {
+            everywhere = true;
+            continue;
+        }
+        const float depth = float(-v.z);
+        const float cx = 0.5f * f.width + float(v.x) / depth * f.focalPixels[0];
+        const float cy = 0.5f * f.height + float(v.y) / depth * f.focalPixels[1];
+        const float half = 0.5f * size + 1.0f;
+        rects.insert(rects.end(), {cx - half, cy - half, cx + half, cy + half});
     }
     mSquareCount = ids.size();
     glBindBuffer(GL_ARRAY_BUFFER, mSquares.id());
@@ -145,7 +164,42 @@ void SpherePass::upload(const Globules& g, bool withSpeed, const FrameUniforms& 
     glBindBuffer(GL_ARRAY_BUFFER, mSquareIds.id());
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(ids.size() * sizeof(uint32_t)), ids.data(),
                  GL_STREAM_DRAW);
+    uploadTiles(rects, everywhere, f);
     gl::checkErrors("uploading globules");
+}
+
+void SpherePass::uploadTiles(const std::vector<float>& rects, bool everywhere,
+                             const FrameUniforms& f) {
+    const int columns = (f.width + kTile - 1) / kTile, rows = (f.height + kTile - 1) / kTile;
+    std::vector<uint8_t> marked(std::size_t(columns) * rows, everywhere ? 1 : 0);
+    for (std::size_t k = 0; !everywhere && k < rects.size(); k += 4) {
+        const int x0 = std::max(0, int(std::floor(rects[k] / kTile)));
+        const int y0 = std::max(0, int(std::floor(rects[k + 1] / kTile)));
+        const int x1 = std::min(columns - 1, int(std::floor(rects[k + 2] / kTile)));
+        const int y1 = std::min(rows - 1, int(std::floor(rects[k + 3] / kTile)));
+        for (int ty = y0; ty <= y1; ++ty) {
+            for (int tx = x0; tx <= x1; ++tx) marked[std::size_t(ty) * columns + tx] = 1;
+        }
+    }
+    std::vector<float> corners;
+    auto ndcX = [&](int tx) { return std::min(1.0f, 2.0f * tx * kTile / f.width - 1.0f); };
+    auto ndcY = [&](int ty) { return std::min(1.0f, 2.0f * ty * kTile / f.height - 1.0f); };
+    for (int ty = 0; ty < rows; ++ty) {
+        for (int tx = 0; tx < columns;) {
+            if (!marked[std::size_t(ty) * columns + tx]) {
+                ++tx;
+                continue;
+            }
+            const int start = tx;
+            while (tx < columns && marked[std::size_t(ty) * columns + tx]) ++tx;
+            const float x0 = ndcX(start), x1 = ndcX(tx), y0 = ndcY(ty), y1 = ndcY(ty + 1);
+            corners.insert(corners.end(), {x0, y0, x1, y0, x0, y1, x1, y0, x1, y1, x0, y1});
+        }
+    }
+    mTileVertices = corners.size() / 2;
+    glBindBuffer(GL_ARRAY_BUFFER, mTiles.id());
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(corners.size() * sizeof(float)), corners.data(),
+                 GL_STREAM_DRAW);
 }
 
 void SpherePass::drawSquares() const {
@@ -179,6 +233,10 @@ void SpherePass::drawVisibility(const FrameUniforms& f, const FrameTarget& targe
     target.drawIds();
     const bool coverage = mSamples > 1;
     if (coverage) glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    // Mark the covered samples for the shading pass.
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 1, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
     glEnable(GL_PROGRAM_POINT_SIZE);
     for (const gl::Program* program : {&mVisibilityPoints, &mVisibilitySquares}) {
         glUseProgram(program->id());
@@ -194,6 +252,7 @@ void SpherePass::drawVisibility(const FrameUniforms& f, const FrameTarget& targe
     }
     glBindVertexArray(0);
     glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    glDisable(GL_STENCIL_TEST);
     target.drawColor();
 }
 
@@ -212,11 +271,17 @@ void SpherePass::drawShading(const FrameUniforms& f, const FrameTarget& target) 
         glUniform1i(mShade.uniform(names[i]), 2 + i);
     }
     glActiveTexture(GL_TEXTURE0);
-    // Every pixel once; the depth buffer keeps the spheres' depth for the ground.
+    // Each pixel a sphere covers, once: the tiles and (single-sampled) the stencil skip the
+    // others before their fragment shader runs. The depth buffer keeps the spheres'
+    // depth for the ground.
     glDisable(GL_DEPTH_TEST);
-    glBindVertexArray(mEmptyArray.id());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_EQUAL, 1, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    glBindVertexArray(mTileArray.id());
+    glDrawArrays(GL_TRIANGLES, 0, GLsizei(mTileVertices));
     glBindVertexArray(0);
+    glDisable(GL_STENCIL_TEST);
     glEnable(GL_DEPTH_TEST);
 }
 

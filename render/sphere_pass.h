@@ -4,7 +4,10 @@
 //  2. Visibility: each globule a point sprite covering its exact screen extent; the
 //     fragment intersects the eye ray with the sphere and writes its true depth and the
 //     globule's id (alpha-to-coverage anti-aliases the silhouette).
-//  3. Shading: one full-screen pass looks up the id of each pixel and shades that sphere.
+//  3. Shading: one pass over the screen tiles that hold spheres looks up the id of each
+//     pixel and shades that sphere. (llvmpipe runs a multisampled fragment shader on
+//     every 4x4 block a primitive touches, masked or not, so a full-screen pass would
+//     pay for the empty sky; the tiles, marked from the sprites' rectangles, do not.)
 // Deferring the shading makes its cost one per pixel instead of one per overlapping
 // sphere (a million globules overlap tens of times), and sprites cost a vertex each.
 // Spheres too large for a sprite (llvmpipe: 255 pixels) are drawn as instanced squares.
@@ -38,15 +41,18 @@ public:
 
 private:
     void drawSquares() const;
+    /// Marks the kTile x kTile pixel tiles that @p rects (x0, y0, x1, y1 in pixels from the
+    /// bottom left) touch and uploads them as triangles, runs along each row merged.
+    void uploadTiles(const std::vector<float>& rects, bool everywhere, const FrameUniforms& f);
 
     int mSamples;
     float mMaxSprite;  // pixels or texels; bigger spheres are drawn as squares
     gl::Program mVisibilityPoints, mVisibilitySquares, mShade, mShadowPoints, mShadowSquares;
-    gl::VertexArray mPointArray, mSquareArray, mEmptyArray;
+    gl::VertexArray mPointArray, mSquareArray, mTileArray;
     std::array<gl::Buffer, 5> mArrays;    // x, y, z, radius, speed
     std::array<gl::Texture, 5> mTextures;  // the same, as buffer textures
-    gl::Buffer mCorners, mSquares, mSquareIds;
-    std::size_t mCount = 0, mSquareCount = 0;
+    gl::Buffer mCorners, mSquares, mSquareIds, mTiles;
+    std::size_t mCount = 0, mSquareCount = 0, mTileVertices = 0;
 };
 
 /// Pixels across the point sprite that covers a sphere of radius @p radius whose centre

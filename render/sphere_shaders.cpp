@@ -155,19 +155,21 @@ void main() {
 )";
 }
 
-std::string fullScreenVertex() {
+// Screen rectangles, in normalised device coordinates, around the spheres.
+std::string tileVertex() {
     return version() + R"(
-void main() {
-    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
-    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
-}
+layout(location = 0) in vec2 aCorner;
+void main() { gl_Position = vec4(aCorner, 0.0, 1.0); }
 )";
 }
 
-// Shading: one invocation per pixel. Samples that saw a sphere are shaded with the first
-// such sphere; the others are left (through gl_SampleMask) for the ground.
+// Shading: one invocation per pixel, over the screen tiles that hold spheres. Samples
+// that saw a sphere are shaded with the first such sphere; the others are left (through
+// gl_SampleMask) for the ground.
 std::string sphereShadeFragment(int samples) {
     return fragment("#define SAMPLES " + std::to_string(samples) + "\n" + kRayLibrary + R"(
+// The stencil test (samples a sphere covers) before the shader: the rest are skipped.
+layout(early_fragment_tests) in;
 #if SAMPLES > 1
 uniform usampler2DMS uIds;
 #else
@@ -227,7 +229,7 @@ flat out float vSpriteScale;  // sprite half-size over the radius
 
 void main() {
     vec3 c = vec3(aX, aY, aZ);
-    float size = drawable(c, aRadius) ? 2.0 * aRadius * uTexelsPerUnit + 2.0 : 1e9;
+    float size = drawable(c, aRadius) ? 2.0 * aRadius * uTexelsPerUnit + 1.0 : 1e9;
     vCenterDepth = (uLightViewProj * vec4(c, 1.0)).z;
     vRadiusDepth = (uLightViewProj * vec4(aRadius * uLightToward, 0.0)).z;
     vSpriteScale = size / (2.0 * aRadius * uTexelsPerUnit);
