@@ -138,7 +138,7 @@ TEST(SurfaceFrame, DropletsBelowTheVolumeAreRemoved) {
     Globules g = globulesAt({{0, 0, 0}, {0.8, 0, 0}, {0, 0.8, 0}});
     g.add({6, 0, 0}, {0, 0, 0}, 0.3f, 1, 99);
     SurfaceSettings s;
-    s.voxelSize = 0.05;
+    s.voxelSize = 0.075;  // 4 voxels across the droplet's radius
     EXPECT_EQ(analyzeMesh(surfaceGlobules(g, s).mesh).components, 2u);
     s.dropletVolume = 0.5;  // the droplet holds 4/3 pi 0.3^3 = 0.113
     const SurfaceFrame frame = surfaceGlobules(g, s);
@@ -158,9 +158,9 @@ TEST(SurfaceFrame, EmptyFrameGivesEmptyMesh) {
 
 TEST(SurfaceFrame, SameResultForOneAndTwoThreads) {
     SurfaceSettings s;
-    s.voxelSize = 0.08;
+    s.voxelSize = 0.1;
     s.filters = "gaussian:1";
-    const Globules g = blob(200, 3);
+    const Globules g = blob(60, 3);
     SurfaceFrame one, two;
     tbb::task_arena(1).execute([&] { one = surfaceGlobules(g, s); });
     tbb::task_arena(2).execute([&] { two = surfaceGlobules(g, s); });

@@ -146,9 +146,9 @@ TEST(SurfaceVdb, FileHoldsTheDocumentedGrids) {
 
 TEST(SurfaceVdb, GridsAreIdenticalForOneAndTwoThreads) {
     SurfaceSettings s;
-    s.voxelSize = 0.08;
+    s.voxelSize = 0.1;
     s.filters = "gaussian:1, dilate:1";
-    const Globules g = someGlobules(300, 5);
+    const Globules g = someGlobules(80, 5);
     SurfaceFrame one, two;
     tbb::task_arena(1).execute([&] { one = surfaceGlobules(g, s); });
     tbb::task_arena(2).execute([&] { two = surfaceGlobules(g, s); });
