@@ -40,8 +40,8 @@ void checkRender(const RenderSettings& s, const KeyName& name) {
 
 void checkCamera(const CameraSettings& c, const KeyName& name) {
     if (!c.autoFrame && length(c.position - c.target) <= 0) {
-        throw SceneError(name("target") + ": must differ from position (the view direction "
-                                          "would be undefined)");
+        throw SceneError(name("target") + ": must differ from position when auto_frame = "
+                                          "false (the view direction would be undefined)");
     }
 }
 
@@ -90,11 +90,12 @@ void RenderSettings::validate() const { checkRender(*this, plainKeys("render"));
 void RenderSettings::validate(const SettingsSection& s) const { checkRender(*this, placedKeys(s)); }
 
 void CameraSettings::describe(SettingsSection& s) {
-    s.vec3("position", position, NumberRange::any(), "eye position, world units");
+    s.vec3("position", position, NumberRange::any(),
+           "eye position, world units; left equal to target: automatic framing");
     s.vec3("target", target, NumberRange::any(), "point looked at, world units");
     s.number("fov", fov, {1, 170}, "vertical field of view, degrees");
     s.flag("auto_frame", autoFrame,
-           "frame the whole animation automatically; false when position or target is given");
+           "frame the whole animation automatically unless position and target are given");
 }
 
 void CameraSettings::noteGivenKeys(const SettingsSection& s) {

@@ -42,19 +42,24 @@ struct RenderSettings {
     void validate(const SettingsSection& section) const;
 };
 
+/// The camera. Left as by default (position equal to target), it frames the whole
+/// animation automatically; a scene that gives a position (and target) gets that camera.
 struct CameraSettings {
-    Vec3 position{0, 6, 24};  ///< eye, world units
-    Vec3 target{0, 2, 0};     ///< the point looked at, world units
-    double fov = 40;          ///< vertical field of view, degrees
-    /// Frame the whole animation automatically instead of using position and target.
-    /// True until the scene gives a position or target (see noteGivenKeys).
+    Vec3 position{0, 0, 0};  ///< eye, world units; equal to target: automatic framing
+    Vec3 target{0, 0, 0};    ///< the point looked at, world units
+    double fov = 40;         ///< vertical field of view, degrees
+    /// Frame automatically while position and target are unset (equal). False: always the
+    /// given camera (then position must differ from target).
     bool autoFrame = true;
 
+    /// Whether the renderer places the camera itself: autoFrame and no camera given.
+    bool automatic() const { return autoFrame && position == target; }
+
     void describe(SettingsSection& section);
-    /// Turns autoFrame off when the scene gave position or target but not auto_frame.
-    /// Call after the scene's values were assigned to @p section.
+    /// Turns autoFrame off when the scene gave position or target but not auto_frame, so
+    /// the resolved scene says what happened. Optional: automatic() already holds.
     void noteGivenKeys(const SettingsSection& section);
-    /// @throw SceneError naming the key (position equal to target).
+    /// @throw SceneError naming the key (auto_frame = false with position equal to target).
     void validate() const;
     void validate(const SettingsSection& section) const;
 };

@@ -77,7 +77,7 @@ FrameSetup frameSetup(const RenderJob& job, const SceneExtent& extent) {
     setup.lights = job.lights.empty() ? std::vector<LightSettings>{LightSettings{}} : job.lights;
     setup.groundHeight = job.groundHeight;
     const double aspect = double(job.render.width) / double(job.render.height);
-    if (job.camera.autoFrame) {
+    if (job.camera.automatic()) {
         setup.camera = autoFrame(extent, job.groundHeight, job.camera.fov, aspect);
     } else {
         setup.camera = {job.camera.position, job.camera.target, job.camera.fov};

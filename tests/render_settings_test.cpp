@@ -79,19 +79,20 @@ TEST(RenderSettings, ValidateNamesTheKeyAndPlace) {
     }
 }
 
-TEST(CameraSettings, GivenPositionTurnsAutoFrameOff) {
+TEST(CameraSettings, DefaultIsAutomaticAndAGivenCameraIsNot) {
     CameraSettings c;
+    EXPECT_TRUE(c.automatic());
     SettingsSection section("camera");
     c.describe(section);
-    c.noteGivenKeys(section);
-    EXPECT_TRUE(c.autoFrame);
     section.assign("position", at(std::vector<double>{1, 2, 3}));
+    EXPECT_FALSE(c.automatic());  // without the scene reader's help
     c.noteGivenKeys(section);
-    EXPECT_FALSE(c.autoFrame);
+    EXPECT_FALSE(c.autoFrame);  // and the resolved scene says so
     EXPECT_EQ(c.position, (Vec3{1, 2, 3}));
+    EXPECT_NO_THROW(c.validate());
 }
 
-TEST(CameraSettings, ExplicitAutoFrameWins) {
+TEST(CameraSettings, NoteGivenKeysLeavesAnExplicitAutoFrame) {
     CameraSettings c;
     SettingsSection section("camera");
     c.describe(section);
@@ -99,13 +100,20 @@ TEST(CameraSettings, ExplicitAutoFrameWins) {
     section.assign("auto_frame", at(true));
     c.noteGivenKeys(section);
     EXPECT_TRUE(c.autoFrame);
+    SettingsSection untouched("camera");
+    CameraSettings d;
+    d.describe(untouched);
+    d.noteGivenKeys(untouched);
+    EXPECT_TRUE(d.autoFrame);
 }
 
-TEST(CameraSettings, PositionEqualToTargetIsAnError) {
+TEST(CameraSettings, FixedCameraNeedsADirection) {
     CameraSettings c;
     c.autoFrame = false;
-    c.position = c.target = {1, 1, 1};
-    EXPECT_THROW(c.validate(), SceneError);
+    EXPECT_THROW(c.validate(), SceneError);  // position == target == origin
+    c.position = {0, 1, 5};
+    EXPECT_NO_THROW(c.validate());
+    EXPECT_FALSE(c.automatic());
 }
 
 TEST(LightSettings, ZeroDirectionIsAnError) {

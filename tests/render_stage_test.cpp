@@ -89,7 +89,6 @@ TEST(RenderStage, FramesAreTheRenderersWithTheGivenCamera) {
     const fs::path dir = freshDir("camera");
     writeCaches(dir, 1, 2);
     RenderJob job = smallJob();
-    job.camera.autoFrame = false;
     job.camera.position = {0, 3, 14};
     job.camera.target = {0, 2, 0};
     RecordingReporter reporter;
