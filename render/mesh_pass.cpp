@@ -57,12 +57,18 @@ void MeshPass::drawShadow(const FrameUniforms& f) const {
     glBindVertexArray(0);
 }
 
-void MeshPass::draw(const FrameUniforms& f) const {
+void MeshPass::draw(const FrameUniforms& f, bool cullBackFaces) const {
     if (mIndexCount == 0) return;
     glUseProgram(mProgram.id());
     applyFrameUniforms(mProgram, f);
     glBindVertexArray(mVertexArray.id());
+    if (cullBackFaces) {
+        glFrontFace(GL_CCW);
+        glCullFace(GL_BACK);
+        glEnable(GL_CULL_FACE);
+    }
     glDrawElements(GL_TRIANGLES, GLsizei(mIndexCount), GL_UNSIGNED_INT, nullptr);
+    glDisable(GL_CULL_FACE);
     glBindVertexArray(0);
 }
 

@@ -2,7 +2,7 @@
 // The renderer's mesh input: a view of arrays owned by the caller, so the surfacing
 // stage's TriangleMesh (surface/mesh.h: positions, normals, triangles) is drawn without
 // a copy. @code MeshView view{m.positions.data(), m.normals.data(), m.positions.size() / 3,
-//                             m.triangles.data(), m.triangles.size() / 3}; @endcode
+//                             m.triangles.data(), m.triangles.size() / 3, true}; @endcode
 
 #include <cstddef>
 #include <cstdint>
@@ -15,6 +15,9 @@ struct MeshView {
     std::size_t vertexCount = 0;
     const uint32_t* triangles = nullptr;  ///< three vertex indices per triangle
     std::size_t triangleCount = 0;
+    /// Closed and wound counter-clockwise seen from outside (as the surface stage writes
+    /// its meshes): back faces are then skipped. False: every face is drawn, two-sided.
+    bool closed = false;
 };
 
 }  // namespace globular

@@ -35,8 +35,9 @@ TriangleMesh readMesh(const RenderJob& job, const fs::path& outDir, int frame) {
 }
 
 MeshView viewOf(const TriangleMesh& m) {
+    // The surface stage's meshes are closed level sets wound outward (surface/mesh.h).
     return {m.positions.data(), m.normals.size() == m.positions.size() ? m.normals.data() : nullptr,
-            m.vertexCount(), m.triangles.data(), m.triangleCount()};
+            m.vertexCount(), m.triangles.data(), m.triangleCount(), true};
 }
 
 void validate(const RenderJob& job, const StageContext& ctx) {

@@ -245,7 +245,7 @@ Image Renderer::drawMesh(const MeshView& mesh, const FrameSetup& setup) {
         const MeshView& mesh;
         void prepare(const FrameUniforms&) { pass.upload(mesh); }
         void shadow(const FrameUniforms& f) { pass.drawShadow(f); }
-        void draw(const FrameUniforms& f) { pass.draw(f); }
+        void draw(const FrameUniforms& f) { pass.draw(f, mesh.closed); }
     };
     return im.draw(s, own.box, Content{*im.mesh, mesh});
 }

@@ -65,11 +65,11 @@ MeshView blob() {
         for (int j = 0; j < segments; ++j) {
             const uint32_t a = i * segments + j, b = i * segments + (j + 1) % segments;
             const uint32_t c = a + segments, d = b + segments;
-            blobTriangles.insert(blobTriangles.end(), {a, c, b, b, c, d});
+            blobTriangles.insert(blobTriangles.end(), {a, b, c, b, d, c});
         }
     }
     return {blobPositions.data(), blobNormals.data(), blobPositions.size() / 3,
-            blobTriangles.data(), blobTriangles.size() / 3};
+            blobTriangles.data(), blobTriangles.size() / 3, true};
 }
 
 FrameSetup lookFor(const SceneExtent& extent, const std::string& colorBy) {

@@ -258,6 +258,17 @@ TEST(Renderer, MeshCoversItsProjection) {
     expectColor(renderer.drawMesh(faceted, flatSetup()), kWidth / 2, kHeight / 2, kBase, 1);
 }
 
+TEST(Renderer, ClosedMeshesSkipBackFaces) {
+    Renderer renderer(kWidth, kHeight, 1);
+    // Wound clockwise as the camera sees it: a back face.
+    const float positions[] = {-1, -1, 0, -1, 1, 0, 1, -1, 0};
+    const uint32_t triangles[] = {0, 1, 2};
+    MeshView mesh{positions, nullptr, 3, triangles, 1};
+    expectColor(renderer.drawMesh(mesh, flatSetup()), kWidth / 2 - 3, kHeight / 2 + 3, kBase, 1);
+    mesh.closed = true;
+    expectColor(renderer.drawMesh(mesh, flatSetup()), kWidth / 2 - 3, kHeight / 2 + 3, kWhite, 0);
+}
+
 TEST(Renderer, MeshIndexOutOfRangeIsAnError) {
     Renderer renderer(64, 48, 1);
     const float positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
