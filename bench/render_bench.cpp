@@ -1,0 +1,87 @@
+// Render benchmarks: time per frame at 1280x720 and 1920x1080 for 1e3, 1e5 and 1e6 sphere
+// globules (renderBenchPour) and for meshes of 1e5 and 1e6 triangles (renderBenchBlob),
+// plus the PNG encoding of a frame. A frame is upload, shadow map, drawing, resolve,
+// read-back and sRGB encoding: everything runRenderStage does per frame but reading the
+// cache and writing the PNG. The GL context and shaders are made before timing.
+// Not part of ctest; the 1e6 cases take seconds each:
+//   build/bench/render_bench --benchmark_filter=Spheres/1000000
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+
+#include "camera.h"
+#include "gl_context.h"
+#include "png_image.h"
+#include "render_bench_scene.h"
+#include "renderer.h"
+
+namespace globular {
+namespace {
+
+void sizes(benchmark::internal::Benchmark* b, std::vector<int64_t> counts) {
+    for (int64_t height : {720, 1080}) {
+        for (int64_t n : counts) b->Args({n, height});
+    }
+    b->ArgNames({"n", "height"})->Unit(benchmark::kMillisecond)->UseRealTime();
+}
+
+FrameSetup setupFor(const SceneExtent& extent, int width, int height, const char* colorBy) {
+    FrameSetup s;
+    s.render.colorBy = colorBy;
+    s.lights = {LightSettings{}};
+    s.content = extent.box;
+    s.ramp = std::string(colorBy) == "speed" ? extent.speed : extent.height;
+    s.camera = autoFrame(extent, 0, 40, double(width) / height);
+    return s;
+}
+
+void BM_Spheres(benchmark::State& state) {
+    const int height = int(state.range(1)), width = height * 16 / 9;
+    const Globules g = renderBenchPour(std::size_t(state.range(0)));
+    SceneExtent extent;
+    extent.addFrame(g);
+    const FrameSetup setup = setupFor(extent, width, height, "speed");
+    Renderer renderer(width, height, 4);
+    renderer.drawSpheres(g, setup);  // warm-up: shaders are compiled on first use
+    for (auto _ : state) benchmark::DoNotOptimize(renderer.drawSpheres(g, setup));
+    state.counters["globules"] = double(g.size());
+}
+BENCHMARK(BM_Spheres)->Apply([](auto* b) { sizes(b, {1000, 100000, 1000000}); });
+
+void BM_Mesh(benchmark::State& state) {
+    const int height = int(state.range(1)), width = height * 16 / 9;
+    const TriangleMesh mesh = renderBenchBlob(std::size_t(state.range(0)));
+    const MeshView view{mesh.positions.data(), mesh.normals.data(), mesh.vertexCount(),
+                        mesh.triangles.data(), mesh.triangleCount(), true};
+    SceneExtent extent;
+    extent.addPoints(mesh.positions.data(), mesh.vertexCount());
+    const FrameSetup setup = setupFor(extent, width, height, "constant");
+    Renderer renderer(width, height, 4);
+    renderer.drawMesh(view, setup);
+    for (auto _ : state) benchmark::DoNotOptimize(renderer.drawMesh(view, setup));
+    state.counters["triangles"] = double(mesh.triangleCount());
+}
+BENCHMARK(BM_Mesh)->Apply([](auto* b) { sizes(b, {100000, 1000000}); });
+
+void BM_WritePng(benchmark::State& state) {
+    const int height = int(state.range(0)), width = height * 16 / 9;
+    const Globules g = renderBenchPour(100000);
+    SceneExtent extent;
+    extent.addFrame(g);
+    Renderer renderer(width, height, 4);
+    const Image image = renderer.drawSpheres(g, setupFor(extent, width, height, "speed"));
+    const auto path = std::filesystem::temp_directory_path() / "globular_render_bench.png";
+    for (auto _ : state) writePng(path, image);
+    std::filesystem::remove(path);
+}
+BENCHMARK(BM_WritePng)->Arg(720)->Arg(1080)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+}  // namespace globular
+
+int main(int argc, char** argv) {
+    benchmark::Initialize(&argc, argv);
+    benchmark::AddCustomContext("gl", globular::glContextDescription());
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+}
