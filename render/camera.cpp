@@ -22,6 +22,7 @@ double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
 ViewCamera autoFrame(const SceneExtent& extent, double groundHeight, double fov,
                      double aspect) {
     std::vector<Vec3> points = extent.samples;
+    points.insert(points.end(), extent.extremes.begin(), extent.extremes.end());
     double pad = extent.maxRadius;
     if (points.empty()) {
         Bounds3 box = extent.box;
@@ -52,11 +53,9 @@ ViewCamera autoFrame(const SceneExtent& extent, double groundHeight, double fov,
     Bounds3 box;
     for (const Vec3& p : points) box.add(p);
     Vec3 target = box.center();
-    double distance = 0;
-    // Fit the distance, then re-aim at the middle of what the camera sees: the view from
-    // a corner makes the content's projection lopsided about the box's centre.
-    for (int pass = 0; pass < 3; ++pass) {
-        distance = pad + 1e-6;
+    // The distance at which every point fits around the current target.
+    auto fit = [&] {
+        double distance = pad + 1e-6;
         for (const Vec3& p : points) {
             const Vec3 o = p - target;
             const double depth = dot(o, forward);  // beyond the target: positive
@@ -64,6 +63,12 @@ ViewCamera autoFrame(const SceneExtent& extent, double groundHeight, double fov,
                                  (std::abs(dot(o, up)) + pad) / tanY - depth,
                                  2 * pad - depth});  // never inside the content
         }
+        return distance;
+    };
+    // Fit, then re-aim at the middle of what the camera sees (the view from a corner makes
+    // the content's projection lopsided about the box's centre), and fit again.
+    double distance = fit();
+    for (int pass = 0; pass < 3; ++pass) {
         double left = 1e300, right = -1e300, bottom = 1e300, top = -1e300;
         for (const Vec3& p : points) {
             const Vec3 o = p - target;
@@ -75,6 +80,7 @@ ViewCamera autoFrame(const SceneExtent& extent, double groundHeight, double fov,
         }
         target = target + side * (0.5 * (left + right) * distance) +
                  up * (0.5 * (bottom + top) * distance);
+        distance = fit();
     }
     return {target + toEye * distance, target, fov};
 }

@@ -14,7 +14,8 @@ struct ViewCamera {
 };
 
 /// A three-quarter view from slightly above, as in the paper's figures, aimed and placed
-/// so that the content (@p extent's samples, each a sphere of its largest radius, and
+/// so that the content (@p extent's samples and extremes, each a sphere of its largest
+/// radius, and
 /// their feet on the ground at @p groundHeight) is centred in the central 90% of an image
 /// of aspect @p aspect (width / height). Without samples it frames the box's corners;
 /// an empty extent frames a few units of ground around the origin.

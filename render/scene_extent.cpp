@@ -1,6 +1,7 @@
 #include "scene_extent.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -43,22 +44,41 @@ std::vector<float> sampled(std::size_t n, const auto& valueAt) {
     return out;
 }
 
-/// Adds up to kSamplesPerFrame of the points inside @p box, evenly spaced by index; when
-/// the samples outgrow kMaxFramingSamples every other one is dropped (deterministic).
-void addSamples(std::vector<Vec3>& samples, std::size_t n, const Bounds3& box,
-                const auto& pointAt) {
+bool inside(const Bounds3& box, Vec3 p) {
+    return p.x >= box.min.x && p.y >= box.min.y && p.z >= box.min.z && p.x <= box.max.x &&
+           p.y <= box.max.y && p.z <= box.max.z;
+}
+
+/// Adds the points inside @p box that are extreme along x, y or z, and up to
+/// kSamplesPerFrame more evenly spaced by index. When the samples outgrow
+/// kMaxFramingSamples, every other one of the evenly spaced kind is dropped
+/// (deterministic); the extremes stay, so the framing always reaches them.
+void addSamples(std::vector<Vec3>& extremes, std::vector<Vec3>& spaced, std::size_t n,
+                const Bounds3& box, const auto& pointAt) {
+    std::array<std::size_t, 6> extreme;
+    extreme.fill(n);
+    std::array<double, 6> best{1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec3 p = pointAt(i);
+        if (!inside(box, p)) continue;
+        const double v[3] = {p.x, p.y, p.z};
+        for (int a = 0; a < 3; ++a) {
+            if (v[a] < best[2 * a]) best[2 * a] = v[a], extreme[2 * a] = i;
+            if (v[a] > best[2 * a + 1]) best[2 * a + 1] = v[a], extreme[2 * a + 1] = i;
+        }
+    }
+    for (std::size_t i : extreme) {
+        if (i < n) extremes.push_back(pointAt(i));
+    }
     const std::size_t stride = std::max<std::size_t>(1, n / kSamplesPerFrame);
     for (std::size_t i = 0; i < n; i += stride) {
         const Vec3 p = pointAt(i);
-        if (p.x >= box.min.x && p.y >= box.min.y && p.z >= box.min.z && p.x <= box.max.x &&
-            p.y <= box.max.y && p.z <= box.max.z) {
-            samples.push_back(p);
-        }
+        if (inside(box, p)) spaced.push_back(p);
     }
-    while (samples.size() > kMaxFramingSamples) {
+    while (spaced.size() > kMaxFramingSamples) {
         std::size_t kept = 0;
-        for (std::size_t i = 0; i < samples.size(); i += 2) samples[kept++] = samples[i];
-        samples.resize(kept);
+        for (std::size_t i = 0; i < spaced.size(); i += 2) spaced[kept++] = spaced[i];
+        spaced.resize(kept);
     }
 }
 
@@ -105,7 +125,7 @@ void SceneExtent::addFrame(const Globules& g) {
     Bounds3 frameBox;
     frameBox.add(Vec3{lo[0], lo[1], lo[2]});
     frameBox.add(Vec3{hi[0], hi[1], hi[2]});
-    addSamples(samples, n, frameBox, [&](std::size_t i) { return g.position(i); });
+    addSamples(extremes, samples, n, frameBox, [&](std::size_t i) { return g.position(i); });
     maxRadius = std::max(maxRadius, radiusHi);
     box.add(frameBox.min - grow);
     box.add(frameBox.max + grow);
@@ -130,7 +150,7 @@ void SceneExtent::addPoints(const float* positions, std::size_t vertexCount) {
     Bounds3 frameBox;
     frameBox.add(Vec3{lo[0], lo[1], lo[2]});
     frameBox.add(Vec3{hi[0], hi[1], hi[2]});
-    addSamples(samples, vertexCount, frameBox, [&](std::size_t i) {
+    addSamples(extremes, samples, vertexCount, frameBox, [&](std::size_t i) {
         return Vec3{positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]};
     });
     box.add(frameBox);

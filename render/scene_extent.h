@@ -35,9 +35,12 @@ struct SceneExtent {
     Bounds3 box;         ///< globule centres, grown by their radius
     ValueRange speed;    ///< units/s
     ValueRange height;   ///< centre y, units
-    /// An even sample of the centres (at most kMaxFramingSamples, inside the robust box)
-    /// for framing the content itself rather than its box.
+    /// An even sample of the centres inside the robust box (at most kMaxFramingSamples),
+    /// for framing the content itself rather than its box...
     std::vector<Vec3> samples;
+    /// ... and each frame's extreme centres along x, y and z, kept for every frame, so the
+    /// framing reaches the real top of a falling column however sparse the sample.
+    std::vector<Vec3> extremes;
     double maxRadius = 0;  ///< robust largest radius, world units
 
     /// Merges one frame's robust extent.

@@ -63,11 +63,15 @@ TEST(SceneExtent, FramesMerge) {
     EXPECT_DOUBLE_EQ(e.speed.max, 7);
 }
 
-TEST(SceneExtent, SamplesStayBounded) {
+TEST(SceneExtent, SamplesStayBoundedAndExtremesStay) {
     SceneExtent e;
     for (int f = 0; f < 40; ++f) e.addFrame(line(5000));
     EXPECT_LE(e.samples.size(), kMaxFramingSamples);
     EXPECT_GT(e.samples.size(), kMaxFramingSamples / 4);
+    ASSERT_EQ(e.extremes.size(), 40u * 6);
+    double top = 0;
+    for (const Vec3& p : e.extremes) top = std::max(top, p.y);
+    EXPECT_DOUBLE_EQ(top, 2.0 * 4999);  // the top globule, however thin the samples
 }
 
 TEST(SceneExtent, EmptyFrameLeavesItEmpty) {
