@@ -8,6 +8,7 @@
 
 #include "console_reporter.h"
 #include "errors.h"
+#include "figures_command.h"
 #include "globular_version.h"
 #include "run_command.h"
 #include "scene.h"
@@ -40,6 +41,19 @@ int main(int argc, char** argv) {
     runCmd->add_flag("--resume", run.resume, "continue an interrupted run in --out");
     runCmd->add_flag("--quiet,-q", quiet, "only warnings and errors");
 
+    globular::FiguresOptions figures;
+    CLI::App* figuresCmd = app.add_subcommand(
+        "figures", "regenerate the paper's figures and tables into DIR/REPRODUCTION.md");
+    figuresCmd->add_option("--out,-o", figures.outDir, "output directory")->capture_default_str();
+    figuresCmd->add_option("--scale", figures.scale,
+                           "(0, 1]: shrink globule counts, frames and pixels (tests)")
+        ->capture_default_str();
+    figuresCmd->add_option("--threads", figures.threads, "worker threads (0 = all cores)")
+        ->capture_default_str();
+    figuresCmd->add_option("--scenes", figures.scenesDir,
+                           "the paper's scenes (default scenes/paper, here or in the source)");
+    figuresCmd->add_flag("--quiet,-q", quiet, "only warnings and errors");
+
     CLI::App* keysCmd = app.add_subcommand(
         "keys", "print every scene key with its default and meaning (Markdown)");
 
@@ -52,6 +66,7 @@ int main(int argc, char** argv) {
     globular::ConsoleReporter reporter(stderr, quiet);
     try {
         if (keysCmd->parsed()) std::fputs(globular::sceneKeysMarkdown().c_str(), stdout);
+        if (figuresCmd->parsed()) globular::runFigures(figures, reporter);
         if (runCmd->parsed()) {
             run.stages.clear();
             std::stringstream list(stages);

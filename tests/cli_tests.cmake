@@ -7,3 +7,7 @@ add_dependencies(cli_test globular)
 target_compile_definitions(cli_test PRIVATE GLOBULAR_TEST_VERSION="${PROJECT_VERSION}")
 globular_test(resume_test SOURCES resume_test.cpp LIBS globular_sim)
 add_dependencies(resume_test globular)
+# `globular figures`: the table metrics and verdict rules, and a reduced-size run.
+globular_test(outcome_metrics_test SOURCES outcome_metrics_test.cpp LIBS globular_cli)
+globular_test(figures_test SOURCES figures_test.cpp LIBS globular_cli)
+add_dependencies(figures_test globular)
