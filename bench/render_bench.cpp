@@ -7,6 +7,7 @@
 //   build/bench/render_bench --benchmark_filter=Spheres/1000000
 #include <benchmark/benchmark.h>
 
+#include <ctime>
 #include <filesystem>
 
 #include "camera.h"
@@ -20,9 +21,28 @@ namespace {
 
 void sizes(benchmark::internal::Benchmark* b, std::vector<int64_t> counts) {
     for (int64_t height : {720, 1080}) {
-        for (int64_t n : counts) b->Args({n, height});
+        for (int64_t n : counts) b->Args({n, height, 4});
     }
-    b->ArgNames({"n", "height"})->Unit(benchmark::kMillisecond)->UseRealTime();
+    // Without multisampling: what anti-aliasing costs at the largest size.
+    for (int64_t height : {720, 1080}) b->Args({counts.back(), height, 1});
+    b->ArgNames({"n", "height", "samples"})->Unit(benchmark::kMillisecond)->UseRealTime();
+}
+
+/// CPU seconds of the whole process, llvmpipe's rasteriser threads included: steadier
+/// than wall time when other work shares the machine.
+double processCpuSeconds() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+/// Runs @p frame per iteration; reports process CPU seconds per frame as "cpu_s".
+template <typename Frame>
+void timeFrames(benchmark::State& state, Frame&& frame) {
+    const double start = processCpuSeconds();
+    for (auto _ : state) frame();
+    state.counters["cpu_s"] =
+        benchmark::Counter(processCpuSeconds() - start, benchmark::Counter::kAvgIterations);
 }
 
 FrameSetup setupFor(const SceneExtent& extent, int width, int height, const char* colorBy) {
@@ -41,9 +61,9 @@ void BM_Spheres(benchmark::State& state) {
     SceneExtent extent;
     extent.addFrame(g);
     const FrameSetup setup = setupFor(extent, width, height, "speed");
-    Renderer renderer(width, height, 4);
+    Renderer renderer(width, height, int(state.range(2)));
     renderer.drawSpheres(g, setup);  // warm-up: shaders are compiled on first use
-    for (auto _ : state) benchmark::DoNotOptimize(renderer.drawSpheres(g, setup));
+    timeFrames(state, [&] { benchmark::DoNotOptimize(renderer.drawSpheres(g, setup)); });
     state.counters["globules"] = double(g.size());
 }
 BENCHMARK(BM_Spheres)->Apply([](auto* b) { sizes(b, {1000, 100000, 1000000}); });
@@ -51,14 +71,14 @@ BENCHMARK(BM_Spheres)->Apply([](auto* b) { sizes(b, {1000, 100000, 1000000}); })
 void BM_Mesh(benchmark::State& state) {
     const int height = int(state.range(1)), width = height * 16 / 9;
     const TriangleMesh mesh = renderBenchBlob(std::size_t(state.range(0)));
-    const MeshView view{mesh.positions.data(), mesh.normals.data(), mesh.vertexCount(),
+    const MeshView view{mesh.positions.data(), mesh.normals.data(),  mesh.vertexCount(),
                         mesh.triangles.data(), mesh.triangleCount(), true};
     SceneExtent extent;
     extent.addPoints(mesh.positions.data(), mesh.vertexCount());
     const FrameSetup setup = setupFor(extent, width, height, "constant");
-    Renderer renderer(width, height, 4);
+    Renderer renderer(width, height, int(state.range(2)));
     renderer.drawMesh(view, setup);
-    for (auto _ : state) benchmark::DoNotOptimize(renderer.drawMesh(view, setup));
+    timeFrames(state, [&] { benchmark::DoNotOptimize(renderer.drawMesh(view, setup)); });
     state.counters["triangles"] = double(mesh.triangleCount());
 }
 BENCHMARK(BM_Mesh)->Apply([](auto* b) { sizes(b, {100000, 1000000}); });
@@ -71,7 +91,7 @@ void BM_WritePng(benchmark::State& state) {
     Renderer renderer(width, height, 4);
     const Image image = renderer.drawSpheres(g, setupFor(extent, width, height, "speed"));
     const auto path = std::filesystem::temp_directory_path() / "globular_render_bench.png";
-    for (auto _ : state) writePng(path, image);
+    timeFrames(state, [&] { writePng(path, image); });
     std::filesystem::remove(path);
 }
 BENCHMARK(BM_WritePng)->Arg(720)->Arg(1080)->Unit(benchmark::kMillisecond)->UseRealTime();

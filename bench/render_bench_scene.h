@@ -40,8 +40,8 @@ inline Globules renderBenchPour(std::size_t n, unsigned seed = 1989) {
         } else {
             const double y = height + (top - height) * u(rng);
             g.add({streamRadius * rho * std::cos(angle), y, streamRadius * rho * std::sin(angle)},
-                  {0.2 * jitter(rng), -std::sqrt(2 * 9.8 * (top - y + 1)), 0.2 * jitter(rng)},
-                  1.0f, 1.0f, int32_t(i));
+                  {0.2 * jitter(rng), -std::sqrt(2 * 9.8 * (top - y + 1)), 0.2 * jitter(rng)}, 1.0f,
+                  1.0f, int32_t(i));
         }
     }
     return g;
