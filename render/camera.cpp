@@ -19,8 +19,7 @@ double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
 
 }  // namespace
 
-ViewCamera autoFrame(const SceneExtent& extent, double groundHeight, double fov,
-                     double aspect) {
+ViewCamera autoFrame(const SceneExtent& extent, double groundHeight, double fov, double aspect) {
     std::vector<Vec3> points = extent.samples;
     points.insert(points.end(), extent.extremes.begin(), extent.extremes.end());
     double pad = extent.maxRadius;
@@ -39,7 +38,8 @@ ViewCamera autoFrame(const SceneExtent& extent, double groundHeight, double fov,
     }
     // Show where the content meets the ground (and its shadow), not only the content.
     const std::size_t count = points.size();
-    for (std::size_t i = 0; i < count; ++i) points.push_back({points[i].x, groundHeight, points[i].z});
+    for (std::size_t i = 0; i < count; ++i)
+        points.push_back({points[i].x, groundHeight, points[i].z});
 
     const double azimuth = radians(kAzimuthDegrees), elevation = radians(kElevationDegrees);
     const Vec3 toEye{std::cos(elevation) * std::sin(azimuth), std::sin(elevation),

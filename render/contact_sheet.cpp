@@ -20,9 +20,7 @@ const std::array<float, 256>& linearTable() {
     return table;
 }
 
-uint8_t toByte(double linear) {
-    return uint8_t(std::lround(255.0 * linearToSrgb(linear)));
-}
+uint8_t toByte(double linear) { return uint8_t(std::lround(255.0 * linearToSrgb(linear))); }
 
 /// For each output column (or row) of @p outSize over @p inSize source pixels: the source
 /// pixels it covers and the fraction of each.

@@ -13,7 +13,7 @@
 namespace globular::detail {
 
 class FrameTarget {
-public:
+  public:
     /// @throw Error when the driver cannot make such a framebuffer.
     FrameTarget(int width, int height, int samples);
 
@@ -34,7 +34,7 @@ public:
     int height() const { return mHeight; }
     int samples() const { return mSamples; }
 
-private:
+  private:
     int mWidth, mHeight, mSamples;
     gl::Framebuffer mDraw, mResolved;
     gl::Renderbuffer mColor, mDepth, mResolvedColor;

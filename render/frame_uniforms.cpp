@@ -39,8 +39,7 @@ void applyFrameUniforms(const gl::Program& p, const FrameUniforms& f) {
     const int lights = std::min<int>(int(f.lightToward.size()), shaders::kMaxLights);
     glUniform1i(p.uniform("uLightCount"), lights);
     setVec3Array(p, "uLightToward", {f.lightToward.begin(), f.lightToward.begin() + lights});
-    setVec3Array(p, "uLightRadiance",
-                 {f.lightRadiance.begin(), f.lightRadiance.begin() + lights});
+    setVec3Array(p, "uLightRadiance", {f.lightRadiance.begin(), f.lightRadiance.begin() + lights});
     glUniform1f(p.uniform("uAmbient"), f.ambient);
     glUniform1f(p.uniform("uSpecular"), f.specular);
     glUniform1i(p.uniform("uShadowed"), f.shadowed ? 1 : 0);

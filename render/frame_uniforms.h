@@ -15,11 +15,11 @@ struct FrameUniforms {
     int width = 0, height = 0;  ///< pixels
     Mat4 view, viewProj;
     Vec3 eye;
-    Vec3 camForward;        ///< unit view direction
-    Vec3 camRight, camUp;   ///< scaled to reach the image's edges at unit distance
-    float zNear = 0;        ///< world units
-    float pixelAngle = 0;   ///< a pixel's width at unit distance, world units
-    float focalPixels[2] = {0, 0};  ///< pixels per unit of x/depth and of y/depth
+    Vec3 camForward;                  ///< unit view direction
+    Vec3 camRight, camUp;             ///< scaled to reach the image's edges at unit distance
+    float zNear = 0;                  ///< world units
+    float pixelAngle = 0;             ///< a pixel's width at unit distance, world units
+    float focalPixels[2] = {0, 0};    ///< pixels per unit of x/depth and of y/depth
     std::vector<Vec3> lightToward;    ///< unit, towards each light
     std::vector<Vec3> lightRadiance;  ///< linear colour times intensity
     float ambient = 0;

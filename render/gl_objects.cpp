@@ -29,8 +29,7 @@ GLuint compile(const std::string& name, GLenum stage, const std::string& source)
         std::vector<char> log(std::size_t(length) + 1, '\0');
         glGetShaderInfoLog(shader, length, nullptr, log.data());
         glDeleteShader(shader);
-        throw Error("render: the " + name +
-                    (stage == GL_VERTEX_SHADER ? " vertex" : " fragment") +
+        throw Error("render: the " + name + (stage == GL_VERTEX_SHADER ? " vertex" : " fragment") +
                     " shader does not compile: " + log.data());
     }
     return shader;

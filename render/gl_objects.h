@@ -12,7 +12,7 @@ namespace globular::gl {
 /// An OpenGL object name freed by @p Delete (glDeleteBuffers and friends). Move-only.
 template <void (*Delete)(GLsizei, const GLuint*)>
 class Name {
-public:
+  public:
     Name() = default;
     explicit Name(GLuint id) : mId(id) {}
     Name(Name&& other) noexcept : mId(std::exchange(other.mId, 0)) {}
@@ -27,7 +27,7 @@ public:
     }
     GLuint id() const { return mId; }
 
-private:
+  private:
     GLuint mId = 0;
 };
 
@@ -44,7 +44,7 @@ Framebuffer makeFramebuffer();
 Renderbuffer makeRenderbuffer();
 
 class Program {
-public:
+  public:
     /// Compiles and links; @p name appears in error messages.
     /// @throw Error with the driver's log when compiling or linking fails.
     Program(const std::string& name, const std::string& vertexSource,
@@ -58,7 +58,7 @@ public:
     /// -1 when the uniform does not exist or was optimised away (GL then ignores sets).
     GLint uniform(const char* name) const { return glGetUniformLocation(mId, name); }
 
-private:
+  private:
     GLuint mId = 0;
 };
 

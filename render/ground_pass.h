@@ -9,22 +9,22 @@
 namespace globular::detail {
 
 struct GroundLook {
-    double height = 0;        ///< y of the plane, world units
-    Vec3 center;              ///< the content's centre; the fade is measured from it (xz)
-    double fadeStart = 10;    ///< world units from center
-    double fadeEnd = 30;      ///< fully background here; the square ends just beyond
-    double checkerSize = 1;   ///< world units
+    double height = 0;              ///< y of the plane, world units
+    Vec3 center;                    ///< the content's centre; the fade is measured from it (xz)
+    double fadeStart = 10;          ///< world units from center
+    double fadeEnd = 30;            ///< fully background here; the square ends just beyond
+    double checkerSize = 1;         ///< world units
     double checkerContrast = 0.12;  ///< fraction by which dark squares are darker
-    Vec3 color;               ///< linear
-    Vec3 background;          ///< linear
+    Vec3 color;                     ///< linear
+    Vec3 background;                ///< linear
 };
 
 class GroundPass {
-public:
+  public:
     GroundPass();
     void draw(const FrameUniforms& frame, const GroundLook& look) const;
 
-private:
+  private:
     gl::Program mProgram;
     gl::VertexArray mVertexArray;
     gl::Buffer mCorners;

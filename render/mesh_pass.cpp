@@ -42,8 +42,8 @@ void MeshPass::upload(const MeshView& mesh) {
         glVertexAttrib3f(1, 0, 0, 0);  // the fragment shader then uses face normals
     }
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mIndices.id());
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indexCount * sizeof(uint32_t)),
-                 mesh.triangles, GL_STREAM_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indexCount * sizeof(uint32_t)), mesh.triangles,
+                 GL_STREAM_DRAW);
     glBindVertexArray(0);
     gl::checkErrors("uploading the mesh");
 }

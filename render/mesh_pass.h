@@ -9,7 +9,7 @@
 namespace globular::detail {
 
 class MeshPass {
-public:
+  public:
     MeshPass();
     /// @throw Error when an index is out of range (the GL would read garbage).
     void upload(const MeshView& mesh);
@@ -19,7 +19,7 @@ public:
     ///        which matters because multisampled llvmpipe shades hidden fragments too.
     void draw(const FrameUniforms& frame, bool cullBackFaces) const;
 
-private:
+  private:
     gl::Program mProgram;
     gl::Program mShadowProgram;
     gl::VertexArray mVertexArray;

@@ -40,9 +40,9 @@ void assembleMovie(const fs::path& ffmpeg, const fs::path& outDir, int firstFram
     writeAtomically(outDir / "movie.mp4", [&](const fs::path& temporary) {
         // posix_spawn with an argument vector: no shell, so no quoting of paths.
         std::vector<std::string> args = {
-            ffmpeg.string(), "-hide_banner", "-loglevel", "error", "-y",
-            "-framerate", std::to_string(fps), "-start_number", std::to_string(firstFrame),
-            "-i", pattern.string(), "-frames:v", std::to_string(lastFrame - firstFrame + 1),
+            ffmpeg.string(), "-hide_banner", "-loglevel", "error", "-y", "-framerate",
+            std::to_string(fps), "-start_number", std::to_string(firstFrame), "-i",
+            pattern.string(), "-frames:v", std::to_string(lastFrame - firstFrame + 1),
             // H.264 in yuv420p needs even sizes; pad by a pixel rather than fail.
             "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt", "yuv420p",
             "-crf", "18", "-movflags", "+faststart", "-f", "mp4", temporary.string()};
@@ -50,14 +50,15 @@ void assembleMovie(const fs::path& ffmpeg, const fs::path& outDir, int firstFram
         for (auto& a : args) argv.push_back(a.data());
         argv.push_back(nullptr);
         pid_t pid = 0;
-        const int spawned = ::posix_spawn(&pid, ffmpeg.c_str(), nullptr, nullptr, argv.data(),
-                                          environ);
+        const int spawned =
+            ::posix_spawn(&pid, ffmpeg.c_str(), nullptr, nullptr, argv.data(), environ);
         if (spawned != 0) {
             throw IoError("cannot run " + ffmpeg.string() + ": " + std::strerror(spawned));
         }
         int status = 0;
         while (::waitpid(pid, &status, 0) < 0) {
-            if (errno != EINTR) throw IoError("cannot wait for ffmpeg: " + std::string(std::strerror(errno)));
+            if (errno != EINTR)
+                throw IoError("cannot wait for ffmpeg: " + std::string(std::strerror(errno)));
         }
         if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
             throw IoError("ffmpeg failed (status " +

@@ -102,8 +102,8 @@ void writePng(const std::filesystem::path& path, const Image& image) {
         // Frames are large and written once: a low zlib level is the better trade.
         png_set_compression_level(png, 3);
         png_set_IHDR(png, info, image.width, image.height, 8,
-                     opaque ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGB_ALPHA,
-                     PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+                     opaque ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE,
+                     PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
         png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
         png_write_info(png, info);
         // An opaque image is stored as RGB: libpng drops the fourth byte of each pixel.

@@ -40,8 +40,9 @@ void checkRender(const RenderSettings& s, const KeyName& name) {
 
 void checkCamera(const CameraSettings& c, const KeyName& name) {
     if (!c.autoFrame && length(c.position - c.target) <= 0) {
-        throw SceneError(name("target") + ": must differ from position when auto_frame = "
-                                          "false (the view direction would be undefined)");
+        throw SceneError(name("target") +
+                         ": must differ from position when auto_frame = "
+                         "false (the view direction would be undefined)");
     }
 }
 
@@ -74,7 +75,8 @@ void RenderSettings::describe(SettingsSection& s) {
     s.number("checker_size", checkerSize, NumberRange::nonNegative(),
              "edge of a ground checker square, world units; 0 = automatic");
     s.vec3("background", background, kUnit, "background colour, sRGB in [0, 1]");
-    s.integer("shadow_map_size", shadowMapSize, 256, 8192, "shadow map texels per side");
+    s.integer("shadow_map_size", shadowMapSize, 256, 8192,
+              "largest shadow map, texels per side (it follows the screen below that)");
     s.integer("contact_sheet", contactSheet, 0, 1000,
               "frames tiled into contact_sheet.png, evenly spaced; 0 = no sheet");
     s.integer("contact_columns", contactColumns, 0, 100,

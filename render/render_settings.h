@@ -14,26 +14,26 @@ namespace globular {
 class SettingsSection;
 
 struct RenderSettings {
-    int64_t width = 1280;              ///< pixels
-    int64_t height = 720;              ///< pixels
-    std::string mode = "spheres";      ///< spheres | surface
-    int64_t samples = 4;               ///< multisample anti-aliasing samples per pixel, 1 = off
-    std::string colorBy = "constant";  ///< constant | speed | height
-    Vec3 color{0.16, 0.42, 0.82};      ///< base colour (sRGB), used by color_by = constant
-    double rampMin = 0;                ///< speed (units/s) or height (units) at the ramp's start
-    double rampMax = 0;                ///< ... and end; rampMin == rampMax: the animation's range
-    double specular = 0.35;            ///< strength of the key light's highlight, 0 = matte
-    double ambient = 0.30;             ///< sky light, as a fraction of the base colour
-    bool ground = true;                ///< draw the ground plane
+    int64_t width = 1280;                ///< pixels
+    int64_t height = 720;                ///< pixels
+    std::string mode = "spheres";        ///< spheres | surface
+    int64_t samples = 4;                 ///< multisample anti-aliasing samples per pixel, 1 = off
+    std::string colorBy = "constant";    ///< constant | speed | height
+    Vec3 color{0.16, 0.42, 0.82};        ///< base colour (sRGB), used by color_by = constant
+    double rampMin = 0;                  ///< speed (units/s) or height (units) at the ramp's start
+    double rampMax = 0;                  ///< ... and end; rampMin == rampMax: the animation's range
+    double specular = 0.35;              ///< strength of the key light's highlight, 0 = matte
+    double ambient = 0.30;               ///< sky light, as a fraction of the base colour
+    bool ground = true;                  ///< draw the ground plane
     Vec3 groundColor{0.72, 0.70, 0.66};  ///< sRGB
-    double checkerSize = 0;            ///< ground checker edge, world units; 0 = automatic
+    double checkerSize = 0;              ///< ground checker edge, world units; 0 = automatic
     Vec3 background{0.86, 0.88, 0.91};   ///< sRGB; the ground fades into it at the horizon
-    int64_t shadowMapSize = 2048;      ///< shadow map texels per side
-    int64_t contactSheet = 0;          ///< frames tiled into contact_sheet.png, 0 = none
-    int64_t contactColumns = 0;        ///< tiles per row, 0 = automatic
-    int64_t contactTileWidth = 480;    ///< pixels per tile
-    bool movie = false;                ///< assemble frames/ into movie.mp4 with ffmpeg
-    double movieFps = 0;               ///< movie frame rate, 0 = the simulation's fps
+    int64_t shadowMapSize = 2048;        ///< largest shadow map, texels per side
+    int64_t contactSheet = 0;            ///< frames tiled into contact_sheet.png, 0 = none
+    int64_t contactColumns = 0;          ///< tiles per row, 0 = automatic
+    int64_t contactTileWidth = 480;      ///< pixels per tile
+    bool movie = false;                  ///< assemble frames/ into movie.mp4 with ffmpeg
+    double movieFps = 0;                 ///< movie frame rate, 0 = the simulation's fps
 
     void describe(SettingsSection& section);
     /// @throw SceneError naming the key (e.g. color_by = speed with mode = surface).
@@ -67,9 +67,9 @@ struct CameraSettings {
 /// A directional light. The first light is the key light and casts shadows.
 struct LightSettings {
     Vec3 direction{0.55, -1.0, -0.35};  ///< the way the light travels (towards the ground)
-    Vec3 color{1.0, 0.97, 0.92};         ///< sRGB
-    double intensity = 1.0;              ///< multiplies color
-    bool shadows = true;                 ///< casts shadows (only the first light can)
+    Vec3 color{1.0, 0.97, 0.92};        ///< sRGB
+    double intensity = 1.0;             ///< multiplies color
+    bool shadows = true;                ///< casts shadows (only the first light can)
 
     void describe(SettingsSection& section);
     /// @throw SceneError naming the key (zero direction).

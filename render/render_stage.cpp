@@ -37,7 +37,8 @@ TriangleMesh readMesh(const RenderJob& job, const fs::path& outDir, int frame) {
 MeshView viewOf(const TriangleMesh& m) {
     // The surface stage's meshes are closed level sets wound outward (surface/mesh.h).
     return {m.positions.data(), m.normals.size() == m.positions.size() ? m.normals.data() : nullptr,
-            m.vertexCount(), m.triangles.data(), m.triangleCount(), true};
+            m.vertexCount(),    m.triangles.data(),
+            m.triangleCount(),  true};
 }
 
 void validate(const RenderJob& job, const StageContext& ctx) {
@@ -108,8 +109,9 @@ void writeSheet(const RenderJob& job, const StageContext& ctx) {
 void writeMovie(const RenderJob& job, const StageContext& ctx) {
     const fs::path ffmpeg = findOnPath("ffmpeg");
     if (ffmpeg.empty()) {
-        ctx.report().warn("render: [render] movie = true but ffmpeg is not on PATH; no movie.mp4 "
-                          "(install ffmpeg, or assemble frames/ yourself)");
+        ctx.report().warn(
+            "render: [render] movie = true but ffmpeg is not on PATH; no movie.mp4 "
+            "(install ffmpeg, or assemble frames/ yourself)");
         return;
     }
     const double fps = job.render.movieFps > 0 ? job.render.movieFps : job.fps;

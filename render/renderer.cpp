@@ -8,8 +8,8 @@
 
 #include "color_ramp.h"
 #include "errors.h"
-#include "gl_context.h"
 #include "frame_target.h"
+#include "gl_context.h"
 #include "gl_objects.h"
 #include "ground_pass.h"
 #include "mesh_pass.h"
@@ -42,8 +42,7 @@ detail::GroundLook groundLook(const FrameSetup& s, const Bounds3& box) {
     look.center = box.center();
     look.fadeStart = 1.2 * radius + 0.3 * toCamera;
     look.fadeEnd = 3.0 * radius + 1.5 * toCamera;
-    look.checkerSize =
-        s.render.checkerSize > 0 ? s.render.checkerSize : automaticCheckerSize(box);
+    look.checkerSize = s.render.checkerSize > 0 ? s.render.checkerSize : automaticCheckerSize(box);
     look.color = srgbToLinear(s.render.groundColor);
     look.background = srgbToLinear(s.render.background);
     return look;
@@ -52,7 +51,7 @@ detail::GroundLook groundLook(const FrameSetup& s, const Bounds3& box) {
 /// sRGB encoding of linear values through a 16-bit table: exact to the 8-bit output
 /// and about 20x faster than pow per channel.
 class SrgbEncoder {
-public:
+  public:
     SrgbEncoder() {
         for (std::size_t i = 0; i < mTable.size(); ++i) {
             mTable[i] = uint8_t(std::lround(255.0 * linearToSrgb(double(i) / 65535.0)));
@@ -63,7 +62,7 @@ public:
         return mTable[std::size_t(clamped * 65535.0f + 0.5f)];
     }
 
-private:
+  private:
     std::array<uint8_t, 65536> mTable{};
 };
 

@@ -31,7 +31,7 @@ struct FrameSetup {
 };
 
 class Renderer {
-public:
+  public:
     /// Creates the GL resources (and the process's GL context on first use).
     /// @param samples 1 (no anti-aliasing), 2, 4, ... up to what the driver supports.
     /// @param shadowMapSize texels per side of the key light's shadow map.
@@ -51,7 +51,7 @@ public:
     int height() const;
     int samples() const;
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> mImpl;
 };

@@ -117,8 +117,7 @@ void SceneExtent::addFrame(const Globules& g) {
     }
     double radiusLo = 0, radiusHi = 0;
     if (g.radius.size() == n) {
-        std::vector<float> radii =
-            sampled(n, [&](std::size_t i) { return std::abs(g.radius[i]); });
+        std::vector<float> radii = sampled(n, [&](std::size_t i) { return std::abs(g.radius[i]); });
         robustRange(radii, radiusLo, radiusHi);
     }
     const Vec3 grow{radiusHi, radiusHi, radiusHi};

@@ -32,9 +32,9 @@ struct ValueRange {
 };
 
 struct SceneExtent {
-    Bounds3 box;         ///< globule centres, grown by their radius
-    ValueRange speed;    ///< units/s
-    ValueRange height;   ///< centre y, units
+    Bounds3 box;        ///< globule centres, grown by their radius
+    ValueRange speed;   ///< units/s
+    ValueRange height;  ///< centre y, units
     /// An even sample of the centres inside the robust box (at most kMaxFramingSamples),
     /// for framing the content itself rather than its box...
     std::vector<Vec3> samples;

@@ -77,9 +77,7 @@ std::string version() { return kVersion; }
 std::string fragment(const std::string& body) {
     return version() + kColorLibrary + kShadingLibrary + body;
 }
-std::string vertex(const std::string& body) {
-    return version() + kColorLibrary + body;
-}
+std::string vertex(const std::string& body) { return version() + kColorLibrary + body; }
 
 std::string meshVertex() {
     return vertex(R"(

@@ -7,7 +7,7 @@
 namespace globular::detail {
 
 class ShadowMap {
-public:
+  public:
     /// @param maxSize the most texels per side a frame may use
     explicit ShadowMap(int maxSize);
     /// Texels per side for content of @p worldSize (world units across) seen with pixels of
@@ -22,7 +22,7 @@ public:
     void bindForSampling() const;
     int size() const { return mSize; }
 
-private:
+  private:
     void allocate(int size);
 
     int mMaxSize;

@@ -26,7 +26,7 @@
 namespace globular::detail {
 
 class SpherePass {
-public:
+  public:
     /// @param samples of the frame target the passes draw into.
     explicit SpherePass(int samples);
     /// Uploads positions, radii and (when @p withSpeed) speeds, and picks the spheres too
@@ -39,7 +39,7 @@ public:
     std::size_t count() const { return mCount; }
     std::size_t squareCount() const { return mSquareCount; }
 
-private:
+  private:
     void drawSquares() const;
     /// Marks the kTile x kTile pixel tiles that @p rects (x0, y0, x1, y1 in pixels from the
     /// bottom left) touch and uploads them as triangles, runs along each row merged.
@@ -49,7 +49,7 @@ private:
     float mMaxSprite;  // pixels or texels; bigger spheres are drawn as squares
     gl::Program mVisibilityPoints, mVisibilitySquares, mShade, mShadowPoints, mShadowSquares;
     gl::VertexArray mPointArray, mSquareArray, mTileArray;
-    std::array<gl::Buffer, 5> mArrays;    // x, y, z, radius, speed
+    std::array<gl::Buffer, 5> mArrays;     // x, y, z, radius, speed
     std::array<gl::Texture, 5> mTextures;  // the same, as buffer textures
     gl::Buffer mCorners, mSquares, mSquareIds, mTiles;
     std::size_t mCount = 0, mSquareCount = 0, mTileVertices = 0;

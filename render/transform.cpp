@@ -56,8 +56,7 @@ Mat4 perspective(double fovYDegrees, double aspect, double zNear, double zFar) {
     return out;
 }
 
-Mat4 orthographic(double left, double right, double bottom, double top, double zNear,
-                  double zFar) {
+Mat4 orthographic(double left, double right, double bottom, double top, double zNear, double zFar) {
     Mat4 out = Mat4::identity();
     out(0, 0) = float(2.0 / (right - left));
     out(1, 1) = float(2.0 / (top - bottom));

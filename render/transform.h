@@ -33,7 +33,6 @@ Mat4 lookAt(Vec3 eye, Vec3 target);
 Mat4 perspective(double fovYDegrees, double aspect, double zNear, double zFar);
 
 /// View to clip for a box [left, right] x [bottom, top] x [-zNear, -zFar] in view space.
-Mat4 orthographic(double left, double right, double bottom, double top, double zNear,
-                  double zFar);
+Mat4 orthographic(double left, double right, double bottom, double top, double zNear, double zFar);
 
 }  // namespace globular

@@ -65,7 +65,7 @@ TEST(AutoFrame, EveryCornerOfTheContentIsInsideTheImage) {
         EXPECT_LE(std::abs(c.y), 0.9 + 1e-6);
         largest = std::max({largest, std::abs(c.x), std::abs(c.y)});
     }
-    EXPECT_GT(largest, 0.85);  // tight: the content fills the frame
+    EXPECT_GT(largest, 0.85);                 // tight: the content fills the frame
     EXPECT_GT(cam.position.y, cam.target.y);  // from above, as in the paper
 }
 

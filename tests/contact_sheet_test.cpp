@@ -61,15 +61,15 @@ TEST(ContactSheet, TilesRowByRowWithGutters) {
     EXPECT_EQ(colour(g + 10, g + 5), (std::array<int, 3>{255, 0, 0}));
     EXPECT_EQ(colour(2 * g + 20 + 10, g + 5), (std::array<int, 3>{0, 255, 0}));
     EXPECT_EQ(colour(g + 10, 2 * g + 10 + 5), (std::array<int, 3>{0, 0, 255}));
-    EXPECT_EQ(colour(g / 2, g / 2), (std::array<int, 3>{255, 255, 255}));  // gutter
+    EXPECT_EQ(colour(g / 2, g / 2), (std::array<int, 3>{255, 255, 255}));            // gutter
     EXPECT_EQ(colour(2 * g + 30, 2 * g + 15), (std::array<int, 3>{255, 255, 255}));  // empty slot
 }
 
 TEST(ContactSheet, WritesAFileFromFramePngs) {
-    const fs::path dir = fs::temp_directory_path() / ("globular_sheet_" + std::to_string(::getpid()));
+    const fs::path dir = fs::temp_directory_path() / "globular_sheet" / std::to_string(::getpid());
     std::vector<fs::path> pngs;
     for (int i = 0; i < 4; ++i) {
-        pngs.push_back(dir / ("f" + std::to_string(i) + ".png"));
+        pngs.push_back(dir / std::string("f").append(std::to_string(i)).append(".png"));
         writePng(pngs.back(), solid(64, 48, uint8_t(60 * i), 0, 0));
     }
     writeContactSheet(pngs, 4, 32, dir / "sheet.png");

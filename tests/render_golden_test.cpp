@@ -68,7 +68,7 @@ MeshView blob() {
             blobTriangles.insert(blobTriangles.end(), {a, b, c, b, d, c});
         }
     }
-    return {blobPositions.data(), blobNormals.data(), blobPositions.size() / 3,
+    return {blobPositions.data(), blobNormals.data(),       blobPositions.size() / 3,
             blobTriangles.data(), blobTriangles.size() / 3, true};
 }
 
@@ -110,8 +110,7 @@ void expectMatchesGolden(const Image& image, const std::string& name) {
         const fs::path actual = fs::path(GLOBULAR_BINARY_DIR) / ("actual_" + name);
         writePng(actual, image);
         ADD_FAILURE() << name << " differs from its golden: mean " << mean << ", largest "
-                      << largest << ", " << off << " channels off by more than 12; see "
-                      << actual;
+                      << largest << ", " << off << " channels off by more than 12; see " << actual;
     }
 }
 
@@ -120,8 +119,7 @@ TEST(RenderGolden, Spheres) {
     SceneExtent extent;
     extent.addFrame(g);
     Renderer renderer(kWidth, kHeight, 4);
-    expectMatchesGolden(renderer.drawSpheres(g, lookFor(extent, "height")),
-                        "golden_spheres.png");
+    expectMatchesGolden(renderer.drawSpheres(g, lookFor(extent, "height")), "golden_spheres.png");
 }
 
 TEST(RenderGolden, Surface) {
@@ -129,8 +127,7 @@ TEST(RenderGolden, Surface) {
     SceneExtent extent;
     extent.addPoints(mesh.positions, mesh.vertexCount);
     Renderer renderer(kWidth, kHeight, 4);
-    expectMatchesGolden(renderer.drawMesh(mesh, lookFor(extent, "constant")),
-                        "golden_surface.png");
+    expectMatchesGolden(renderer.drawMesh(mesh, lookFor(extent, "constant")), "golden_surface.png");
 }
 
 TEST(RenderGolden, DetectsAChange) {

@@ -19,7 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 
 class RecordingReporter final : public Reporter {
-public:
+  public:
     void info(std::string_view m) override { infos.emplace_back(m); }
     void warn(std::string_view m) override { warnings.emplace_back(m); }
     void progress(std::string_view stage, long done, long total) override {

@@ -25,7 +25,8 @@ int srgbByte(double linear) { return int(std::lround(255 * linearToSrgb(linear))
 void expectColor(const Image& image, int x, int y, std::array<int, 3> expected, int tolerance) {
     const auto got = rgb(image, x, y);
     for (int c = 0; c < 3; ++c) {
-        EXPECT_NEAR(got[c], expected[c], tolerance) << "pixel (" << x << ", " << y << ") channel " << c;
+        EXPECT_NEAR(got[c], expected[c], tolerance)
+            << "pixel (" << x << ", " << y << ") channel " << c;
     }
 }
 
@@ -164,9 +165,9 @@ TEST(Renderer, ColourBySpeedFollowsTheRamp) {
     g.add({0, 0, 0}, {3, 4, 0}, 1, 1, 0);  // speed 5: the middle of the ramp
     const Image image = renderer.drawSpheres(g, setup);
     const Vec3 c = rampColor(0.5);
-    expectColor(image, kWidth / 2, kHeight / 2,
-                {int(std::lround(255 * c.x)), int(std::lround(255 * c.y)), int(std::lround(255 * c.z))},
-                2);
+    expectColor(
+        image, kWidth / 2, kHeight / 2,
+        {int(std::lround(255 * c.x)), int(std::lround(255 * c.y)), int(std::lround(255 * c.z))}, 2);
 }
 
 TEST(Renderer, NonFiniteGlobulesAreSkipped) {
@@ -191,10 +192,10 @@ TEST(Renderer, EmptyFrameShowsTheGroundAlone) {
     const Image image = renderer.drawSpheres(Globules{}, setup);
     // Sky: the background exactly.
     const Vec3 bg = setup.render.background;
-    expectColor(image, kWidth / 2, 2,
-                {int(std::lround(255 * bg.x)), int(std::lround(255 * bg.y)),
-                 int(std::lround(255 * bg.z))},
-                1);
+    expectColor(
+        image, kWidth / 2, 2,
+        {int(std::lround(255 * bg.x)), int(std::lround(255 * bg.y)), int(std::lround(255 * bg.z))},
+        1);
     // Ground in front of the camera: lit ground colour, light or dark checker square.
     const Vec3 ground = srgbToLinear(setup.render.groundColor);
     const Vec3 toward = normalized(-1.0 * LightSettings{}.direction);
@@ -231,14 +232,14 @@ TEST(Renderer, KeyLightCastsAShadowOnTheGround) {
                                    int((1 - c.y / c.w) / 2 * kHeight)};
     };
     const Vec3 ground = srgbToLinear(setup.render.groundColor);
-    const auto [sx, sy] = pixelOf({0, 0, 0.6});   // in the shadow, in front of the sphere
-    const auto [lx, ly] = pixelOf({3, 0, 0});     // in the sun
+    const auto [sx, sy] = pixelOf({0, 0, 0.6});  // in the shadow, in front of the sphere
+    const auto [lx, ly] = pixelOf({3, 0, 0});    // in the sun
     const double ambient = setup.render.ambient;
     // Light squares of the checker are the ground colour itself (checker 0 there).
-    expectColor(image, sx, sy,
-                {srgbByte(ground.x * ambient), srgbByte(ground.y * ambient),
-                 srgbByte(ground.z * ambient)},
-                3);
+    expectColor(
+        image, sx, sy,
+        {srgbByte(ground.x * ambient), srgbByte(ground.y * ambient), srgbByte(ground.z * ambient)},
+        3);
     EXPECT_NEAR(rgb(image, lx, ly)[0], srgbByte(ground.x * (ambient + 1)), 3);
 }
 
