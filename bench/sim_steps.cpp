@@ -2,7 +2,7 @@
 // (bench/lammps/compare.sh) and the memory measurement of bench/run.sh:
 //
 //   sim_steps (--ply FILE | --block N) --steps S [--threads 1,2] [--neighbors grid|all_pairs]
-//             [--memory]
+//             [--memory] [--candidates]
 //
 // --ply reads the initial globules with a `points` emitter (make_workload's PLY);
 // --block builds liquidBlock(N) directly (bench_workload.h). Material, gravity, ground,
@@ -16,9 +16,13 @@
 // allocates the neighbour workspace, is counted). cpu_s is user + system time of all
 // threads over the same steps. --memory adds the process's resident memory (VmRSS, VmHWM)
 // before construction, after it and after the steps, and the bytes the Globules arrays hold.
+// --candidates counts, after the steps, the candidates the grid hands the force kernel per
+// globule and how many of them lie within the drag reach and the radial window, and times
+// one grid rebuild alone (the serial part of a step).
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <exception>
 #include <iomanip>
@@ -28,6 +32,7 @@
 #include <vector>
 
 #include "bench_workload.h"
+#include "forces.h"
 
 using namespace globular;
 
@@ -45,9 +50,37 @@ void memoryLine(const char* stage) {
               << " hwm_kib=" << bench::procStatusKiB("VmHWM") << '\n';
 }
 
+/// Candidates per globule from the grid's 27-cell neighbourhood, and those within the
+/// search cutoff and the radial window; the time of one grid rebuild per globule.
+void candidateLine(const Globules& g, const PairForce& pair) {
+    NeighborGrid grid;
+    const bench::Stopwatch watch;
+    buildGrid(g, pair, grid);
+    const double buildNs = 1e9 * watch.wall() / double(g.size());
+    float radiusMax = 0;
+    for (const float r : g.radius) radiusMax = std::max(radiusMax, r);
+    const float reach2 = pair.cutoff(2 * radiusMax) * pair.cutoff(2 * radiusMax);
+    const float radial2 = (pair.cr * 2 * radiusMax) * (pair.cr * 2 * radiusMax);
+    double candidates = 0, inReach = 0, inRadial = 0;
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        grid.forEachCandidate(g.px[i], g.py[i], g.pz[i], [&](uint32_t j) {
+            if (j == i) return;
+            const float dx = g.px[i] - g.px[j], dy = g.py[i] - g.py[j], dz = g.pz[i] - g.pz[j];
+            const float d2 = dx * dx + dy * dy + dz * dz;
+            candidates += 1;
+            inReach += d2 < reach2;
+            inRadial += d2 < radial2;
+        });
+    }
+    const double n = double(g.size());
+    std::cout << "candidates per_globule=" << candidates / n << " within_search_cutoff="
+              << inReach / n << " within_radial_window=" << inRadial / n
+              << " grid_build_ns_per_globule=" << buildNs << '\n';
+}
+
 [[noreturn]] void usage() {
     std::cerr << "usage: sim_steps (--ply FILE | --block N) --steps S [--threads 1,2] "
-                 "[--neighbors grid|all_pairs] [--memory]\n";
+                 "[--neighbors grid|all_pairs] [--memory] [--candidates]\n";
     std::exit(2);
 }
 
@@ -58,7 +91,7 @@ int main(int argc, char** argv) try {
     int64_t block = 0, steps = 0;
     std::vector<int> threads{1, 2};
     std::string neighbors = "grid";
-    bool memory = false;
+    bool memory = false, candidates = false;
     for (int a = 1; a < argc; ++a) {
         const std::string arg = argv[a];
         const auto value = [&]() -> std::string {
@@ -78,6 +111,8 @@ int main(int argc, char** argv) try {
         } else if (arg == "--neighbors") {
             neighbors = value();
             if (neighbors != "grid" && neighbors != "all_pairs") usage();
+        } else if (arg == "--candidates") {
+            candidates = true;
         } else if (arg == "--memory") {
             memory = true;
         } else {
@@ -106,6 +141,7 @@ int main(int argc, char** argv) try {
             memoryLine("stepped");
             std::cout << "memory globules_arrays_bytes=" << globuleBytes(sim.globules()) << '\n';
         }
+        if (candidates) candidateLine(sim.globules(), PairForce::fromMaterial(setup.material));
     }
     return 0;
 } catch (const std::exception& e) {

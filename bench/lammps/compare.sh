@@ -29,8 +29,17 @@
 #
 # Environment: LAMMPS_CUTOFF (default 3) to run LAMMPS with another pair cutoff (2 = the
 # radial window only, LAMMPS's cheapest honest setting); TABLE_POINTS (default 4000);
-# KEEP=DIR keeps the workload, inputs and logs in DIR.
+# KEEP=DIR keeps the workload, inputs and logs in DIR; REPEAT=R runs every column R times
+# and keeps the best (on a shared, busy machine); CHECK=0 skips the force check.
 set -euo pipefail
+
+# PRIORITY=1 (root, Linux): rerun in a scheduler autogroup of its own at nice -20, so that
+# other work on a shared machine (compilers, other benchmarks) takes CPU time from it only
+# when it leaves some; they still run. Unset, the timings take whatever share they get.
+if [[ ${PRIORITY:-0} == 1 && -z ${GLOBULAR_BENCH_PRIORITY:-} ]]; then
+    export GLOBULAR_BENCH_PRIORITY=1
+    exec setsid --wait bash -c 'echo -20 >/proc/self/autogroup && exec nice -n -20 "$0" "$@"' "$0" "$@"
+fi
 
 (($# >= 2)) || { echo "usage: $0 N STEPS [BUILD_DIR]" >&2; exit 2; }
 count=$1
@@ -124,18 +133,28 @@ if [[ ${CHECK:-1} != 0 ]]; then
         echo "WARNING: LAMMPS's table forces differ from globular's by up to $worst (rms force $rms)" >&2
 fi
 
-read -r l1 l1cpu l1loop l1pct < <(lammps 1)
-read -r l2 l2cpu l2loop l2pct < <(lammps 2)
+# Each side runs REPEAT times, alternating; the best (fastest) run of each column counts.
+best() { awk -v a="${1:-0}" -v b="$2" 'BEGIN { print (b + 0 > a + 0 ? b : a) }'; }
+l1= l1cpu= l2= l2cpu= g1= g1cpu= g2= g2cpu=
+for ((rep = 0; rep < ${REPEAT:-1}; ++rep)); do
+    read -r rate cpu_rate loop pct < <(lammps 1)
+    [[ $(best "$l1" "$rate") == "$l1" ]] || { l1=$rate l1loop=$loop l1pct=$pct; }
+    l1cpu=$(best "$l1cpu" "$cpu_rate")
+    read -r rate cpu_rate loop pct < <(lammps 2)
+    [[ $(best "$l2" "$rate") == "$l2" ]] || { l2=$rate l2loop=$loop l2pct=$pct; }
+    l2cpu=$(best "$l2cpu" "$cpu_rate")
 
-ours=$("$build/bench/sim_steps" --ply "$work/globules.ply" --steps "$steps" --threads 1,2)
-field() { awk -v t="$1" -v k="$2" '{ for (i = 1; i <= NF; ++i) { split($i, kv, "="); v[kv[1]] = kv[2] }
-                                     if (v["threads"] == t) print v[k] }' <<<"$ours"; }
-g1=$(field 1 globule_steps_per_s)
-g2=$(field 2 globule_steps_per_s)
-g1cpu=$(awk -v n="$atoms" -v s="$steps" -v c="$(field 1 cpu_s)" 'BEGIN { printf "%.6g", n * s / c }')
-g2cpu=$(awk -v n="$atoms" -v s="$steps" -v c="$(field 2 cpu_s)" 'BEGIN { printf "%.6g", n * s / c }')
+    ours=$("$build/bench/sim_steps" --ply "$work/globules.ply" --steps "$steps" --threads 1,2)
+    field() { awk -v t="$1" -v k="$2" '{ for (i = 1; i <= NF; ++i) { split($i, kv, "="); v[kv[1]] = kv[2] }
+                                         if (v["threads"] == t) print v[k] }' <<<"$ours"; }
+    per_cpu() { awk -v n="$atoms" -v s="$steps" -v c="$(field "$1" cpu_s)" 'BEGIN { printf "%.6g", n * s / c }'; }
+    g1=$(best "$g1" "$(field 1 globule_steps_per_s)")
+    g2=$(best "$g2" "$(field 2 globule_steps_per_s)")
+    g1cpu=$(best "$g1cpu" "$(per_cpu 1)")
+    g2cpu=$(best "$g2cpu" "$(per_cpu 2)")
+done
 
-echo "# globule-steps per second (wall) [per CPU second]; LAMMPS pair cutoff $cutoff, table $table_points rows"
+echo "# globule-steps per second (wall) [per CPU second]; LAMMPS pair cutoff $cutoff, table $table_points rows; best of ${REPEAT:-1}"
 printf '%-8s %6s %22s %22s %22s %22s %8s\n' globules steps "LAMMPS np1" "LAMMPS np2" \
     "globular 1 thread" "globular 2 threads" ratio
 printf '%-8s %6s %22s %22s %22s %22s %8.2f\n' "$atoms" "$steps" \
@@ -146,4 +165,6 @@ echo "# ratio = globular 2 threads / LAMMPS np2 (wall). globular also computes t
 echo "# (C_d = 1.5) and evaluates each pair from both sides; LAMMPS here the radial force only."
 [[ -n "${checked:-}" ]] &&
     echo "# same forces: LAMMPS's table vs globular's pair force on $checked globules at step 0: max deviation $worst, rms force $rms"
-echo "# LAMMPS loop: np1 ${l1loop} s (${l1pct}% CPU), np2 ${l2loop} s (${l2pct}% CPU per rank)"
+echo "# LAMMPS loop: np1 ${l1loop} s (${l1pct}% CPU), np2 ${l2loop} s (${l2pct}% CPU per rank);" \
+    "np1 $(awk '/^Per MPI rank memory/ {print $(NF - 1) " MB"}' "$work/log.np1") (LAMMPS's estimate)," \
+    "$(awk '/^Ave neighs\/atom/ {print $NF}' "$work/log.np1") neighbours per atom (half list)"
