@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <ctime>
 #include <functional>
 #include <map>
 #include <thread>
@@ -318,6 +320,7 @@ void runFigures(const FiguresOptions& options, Reporter& reporter) {
     }
     if (options.threads < 0) throw SceneError("--threads must be at least 1 (0 = all cores)");
     const auto start = Clock::now();
+    const std::clock_t cpuStart = std::clock();
     const fs::path scenes = scenesDirectory(options);
     if (!fs::exists(scenes / "liquid.toml")) {
         throw SceneError("the paper's scenes are not in " + scenes.string() +
@@ -369,6 +372,9 @@ void runFigures(const FiguresOptions& options, Reporter& reporter) {
     context.threads = options.threads;
     context.hardwareThreads = std::thread::hardware_concurrency();
     context.totalSeconds = secondsSince(start);
+    context.cpuSeconds = double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
+    double load[1];
+    if (getloadavg(load, 1) == 1) context.loadAverage = load[0];
     const double total = context.totalSeconds;
     writeFileAtomically(options.outDir / "metrics.csv", metricsCsv(runs));
     writeFileAtomically(options.outDir / "REPRODUCTION.md",

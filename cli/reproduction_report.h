@@ -54,7 +54,9 @@ struct ReportContext {
     double scale = 1;
     int threads = 0;
     unsigned hardwareThreads = 0;
-    double totalSeconds = 0;
+    double totalSeconds = 0;  ///< wall time of the whole command
+    double cpuSeconds = 0;    ///< processor time of the whole command, all threads
+    double loadAverage = -1;  ///< the machine's 1-minute load average at the end; < 0: unknown
 };
 
 /// @brief REPRODUCTION.md: summary of verdicts, how outcomes are measured, each figure
