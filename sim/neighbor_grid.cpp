@@ -43,7 +43,7 @@ void NeighborGrid::build(const float* px, const float* py, const float* pz, std:
         if (end - begin > 1) {
             keyed.clear();
             for (uint32_t k = begin; k < end; ++k) {
-                keyed.emplace_back(cellCoord(px[mSorted[k]]), mSorted[k]);
+                keyed.emplace_back(cellCoordX(px[mSorted[k]]), mSorted[k]);
             }
             std::sort(keyed.begin(), keyed.end());
             for (uint32_t k = begin; k < end; ++k) {
@@ -51,13 +51,13 @@ void NeighborGrid::build(const float* px, const float* py, const float* pz, std:
                 mSorted[k] = keyed[k - begin].second;
             }
         } else if (end == begin + 1) {
-            mSortedCellX[begin] = cellCoord(px[mSorted[begin]]);
+            mSortedCellX[begin] = cellCoordX(px[mSorted[begin]]);
         }
     }
 }
 
 int NeighborGrid::neighborRuns(float x, float y, float z, std::array<Run, kMaxRuns>& out) const {
-    const int64_t cx = cellCoord(x), cy = cellCoord(y), cz = cellCoord(z);
+    const int64_t cx = cellCoordX(x), cy = cellCoord(y), cz = cellCoord(z);
     std::array<uint32_t, 9> buckets;
     int count = 0;
     for (int64_t dz = -1; dz <= 1; ++dz)
@@ -69,8 +69,8 @@ int NeighborGrid::neighborRuns(float x, float y, float z, std::array<Run, kMaxRu
     for (int b = 0; b < count; ++b) {
         const int64_t* first = cells + mBucketStart[buckets[b]];
         const int64_t* last = cells + mBucketStart[buckets[b] + 1];
-        const int64_t* lo = std::lower_bound(first, last, cx - 1);
-        const int64_t* hi = std::upper_bound(lo, last, cx + 1);
+        const int64_t* lo = std::lower_bound(first, last, cx - kXSplit);
+        const int64_t* hi = std::upper_bound(lo, last, cx + kXSplit);
         if (lo != hi) out[runs++] = {uint32_t(lo - cells), uint32_t(hi - cells)};
     }
     return runs;

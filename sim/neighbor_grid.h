@@ -23,6 +23,10 @@ class NeighborGrid {
 public:
     using Run = std::pair<uint32_t, uint32_t>;  ///< [begin, end) in sortedOrder()
     static constexpr int kMaxRuns = 9;
+    /// x cells are this many times narrower than a cell: a run then spans 2.5 cells of x
+    /// instead of 3 (17% fewer candidates) and stays one contiguous run. Measured faster;
+    /// splitting y and z as well (25 short runs) measured slower.
+    static constexpr int kXSplit = 2;
 
     /// Bins @p n points into cells of edge @p cellSize (world units, > 0).
     void build(const float* px, const float* py, const float* pz, std::size_t n,
@@ -45,7 +49,7 @@ public:
 
     /// Integer coordinates of the cell holding (x, y, z).
     std::array<int64_t, 3> cellOf(float x, float y, float z) const {
-        return {cellCoord(x), cellCoord(y), cellCoord(z)};
+        return {cellCoordX(x), cellCoord(y), cellCoord(z)};
     }
     float cellSize() const { return mCellSize; }
     /// Point indices in grid order: a cache-friendly traversal order.
@@ -55,8 +59,10 @@ private:
     uint32_t rowBucket(int64_t cy, int64_t cz) const;
     /// Cell coordinate; non-finite or absurd values map to cell 0 (the simulation stops
     /// on non-finite state anyway, but the grid must not invoke undefined behaviour).
-    int64_t cellCoord(float v) const {
-        const float c = std::floor(v * mInvCellSize);
+    int64_t cellCoord(float v) const { return toCell(v * mInvCellSize); }
+    int64_t cellCoordX(float v) const { return toCell(v * (mInvCellSize * kXSplit)); }
+    static int64_t toCell(float scaled) {
+        const float c = std::floor(scaled);
         return c > -4e18f && c < 4e18f ? int64_t(c) : 0;
     }
 
@@ -64,7 +70,7 @@ private:
     uint32_t mMask = 0;
     std::vector<uint32_t> mBucketStart;  ///< size buckets + 1
     std::vector<uint32_t> mSorted;       ///< point indices grouped by bucket, then x cell
-    std::vector<int64_t> mSortedCellX;   ///< x cell of each sorted point
+    std::vector<int64_t> mSortedCellX;   ///< x sub-cell (cellCoordX) of each sorted point
 };
 
 }  // namespace globular
