@@ -16,7 +16,7 @@
 
 namespace globular::bench {
 
-/// A cube of about @p count globules resting on the ground (sim_bench.cpp liquidBlock).
+/// A cube of about @p count globules resting on the ground: the benchmarks' workload.
 inline SimulationSetup liquidBlock(int64_t count, const std::string& neighbors = "grid") {
     SimulationSetup setup;
     setup.simulation.neighbors = neighbors;

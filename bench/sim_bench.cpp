@@ -5,31 +5,13 @@
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
-#include <cmath>
-
-#include "forces.h"
+#include "bench_workload.h"
 #include "simulation.h"
 
 using namespace globular;
+using globular::bench::liquidBlock;
 
 namespace {
-
-/// A cube of about @p count globules resting on the ground.
-SimulationSetup liquidBlock(int64_t count, const std::string& neighbors = "grid") {
-    SimulationSetup setup;
-    setup.simulation.neighbors = neighbors;
-    const double spacing = 1.05;
-    const double side = std::ceil(std::cbrt(double(count))) * spacing;
-    EmitterSettings box;
-    box.type = "box";
-    box.count = count;
-    box.spacing = spacing;
-    box.jitter = 0.05;
-    box.min = {-side / 2, 0.5, -side / 2};
-    box.max = {side / 2, 0.5 + side, side / 2};
-    setup.emitters = {box};
-    return setup;
-}
 
 void runSteps(benchmark::State& state, const SimulationSetup& setup) {
     tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
