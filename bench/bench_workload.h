@@ -1,7 +1,7 @@
 #pragma once
 // The simulation benchmark's workload, shared by sim_bench, make_workload and sim_steps: the paper's
 // liquid (radius 1, r0 1, b1 2, m 5, n 3, C_r = r0, C_d = 1.5 r0) on a jittered lattice of
-// spacing 1.05 resting on the ground, fixed seed; sim_bench uses it too.
+// spacing 1.05 resting on the ground, fixed seed.
 
 #include <sys/resource.h>
 
