@@ -48,8 +48,15 @@ SurfaceEstimate checkAllFrames(const SurfaceSettings& settings, const StageConte
     std::vector<std::optional<SurfaceEstimate>> estimates(count);
     std::vector<std::exception_ptr> errors(count);
     tbb::parallel_for(0, count, [&](int k) {
+        const int frame = ctx.firstFrame + k;
         try {
-            estimates[k] = estimateSurface(readCache(ctx.outDir, ctx.firstFrame + k), settings);
+            estimates[k] = estimateSurface(readCache(ctx.outDir, frame), settings);
+        } catch (const SimulationError& e) {  // a bad globule: say which cache holds it
+            errors[k] = std::make_exception_ptr(
+                SimulationError(cacheVdbPath(ctx.outDir, frame).string() + ": " + e.what()));
+        } catch (const ResourceError& e) {
+            errors[k] = std::make_exception_ptr(
+                ResourceError(cacheVdbPath(ctx.outDir, frame).string() + ": " + e.what()));
         } catch (...) {
             errors[k] = std::current_exception();
         }
@@ -58,7 +65,7 @@ SurfaceEstimate checkAllFrames(const SurfaceSettings& settings, const StageConte
     for (int k = 0; k < count; ++k) {
         if (errors[k]) std::rethrow_exception(errors[k]);
         const int frame = ctx.firstFrame + k;
-        if (estimates[k]->bytes > budget) {
+        if (budget > 0 && estimates[k]->bytes > budget) {
             throw ResourceError(
                 "cannot surface " + describeEstimate(frame, *estimates[k]) + " but only " +
                 formatBytes(budget) + " is available" +
@@ -87,6 +94,10 @@ void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx) {
     const uint64_t budget = settings.memoryLimitGiB > 0
                                 ? uint64_t(settings.memoryLimitGiB * 1024.0 * 1024.0 * 1024.0)
                                 : availableMemoryBytes();
+    if (budget == 0) {
+        report.warn("surface: cannot tell how much memory is available (no /proc/meminfo); "
+                    "frames are not checked against it, set [surface] memory_limit_gib");
+    }
 
     int largestFrame = ctx.firstFrame;
     const SurfaceEstimate largest = checkAllFrames(settings, ctx, budget, largestFrame);
@@ -97,7 +108,8 @@ void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx) {
         // Frames side by side beat one frame at a time with every thread on it: the
         // steps of one frame are not all parallel (measured, docs/surface.md). Memory
         // bounds how many fit at once.
-        const uint64_t fit = largest.bytes > 0 ? budget / largest.bytes : uint64_t(threads);
+        const uint64_t fit =
+            largest.bytes > 0 && budget > 0 ? budget / largest.bytes : uint64_t(threads);
         inFlight = int(std::clamp<uint64_t>(fit, 1, uint64_t(threads)));
     }
     inFlight = std::min(inFlight, total);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include "errors.h"
 #include "mesh_topology.h"
 #include "surface_frame.h"
 
@@ -147,6 +148,17 @@ TEST(SurfaceFrame, DropletsBelowTheVolumeAreRemoved) {
     EXPECT_EQ(topo.components, 1u);
     for (std::size_t v = 0; v < frame.mesh.vertexCount(); ++v) {
         ASSERT_LT(frame.mesh.positions[3 * v], 4.0f);
+    }
+}
+
+TEST(SurfaceFrame, NonFiniteGlobuleIsRefusedByName) {
+    Globules g = globulesAt({{0, 0, 0}});
+    g.add({std::nan(""), 0, 0}, {0, 0, 0}, 1.0f, 1, 42);
+    try {
+        surfaceGlobules(g, SurfaceSettings{});
+        FAIL() << "expected SimulationError";
+    } catch (const SimulationError& e) {
+        EXPECT_NE(std::string(e.what()).find("globule id 42"), std::string::npos) << e.what();
     }
 }
 
