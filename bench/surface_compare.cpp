@@ -11,9 +11,9 @@
 #include <tbb/task_arena.h>
 
 #include <chrono>
-#include <ctime>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <fstream>
 #include <string>
 
@@ -64,9 +64,10 @@ int timePipeline(std::size_t count, double voxelSize, const std::string& meshPat
     const double write = seconds(t);
     const double total = seconds(start);
     const double cpu = double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
-    std::printf("splat %.3f\nlevelset %.3f\nmesh %.3f\nwrite %.3f\ntriangles %zu\ncpu %.3f\n"
-                "total %.3f\n",
-                splat, rebuild, meshing, write, mesh.triangleCount(), cpu, total);
+    std::printf(
+        "splat %.3f\nlevelset %.3f\nmesh %.3f\nwrite %.3f\ntriangles %zu\ncpu %.3f\n"
+        "total %.3f\n",
+        splat, rebuild, meshing, write, mesh.triangleCount(), cpu, total);
     return 0;
 }
 
@@ -90,7 +91,8 @@ int estimateFrame(std::size_t count, double voxelSize) {
 int main(int argc, char** argv) {
     const std::string mode = argc > 1 ? argv[1] : "";
     if (mode == "points" && argc == 4) return writePoints(std::stoul(argv[2]), argv[3]);
-    if (mode == "estimate" && argc == 4) return estimateFrame(std::stoul(argv[2]), std::stod(argv[3]));
+    if (mode == "estimate" && argc == 4)
+        return estimateFrame(std::stoul(argv[2]), std::stod(argv[3]));
     if (mode == "time" && (argc == 5 || argc == 6)) {
         // An optional thread count, to compare with vdb_tool on equal terms.
         const int threads = argc == 6 ? std::stoi(argv[5]) : tbb::info::default_concurrency();

@@ -19,16 +19,15 @@ constexpr uint64_t kFieldMask = (uint64_t(1) << 21) - 1;
 
 std::string describeGlobule(const Globules& g, std::size_t i) {
     std::ostringstream out;
-    out << "globule id " << (i < g.id.size() ? g.id[i] : int32_t(i)) << " at (" << g.px[i]
-        << ", " << g.py[i] << ", " << g.pz[i] << ") radius " << g.radius[i];
+    out << "globule id " << (i < g.id.size() ? g.id[i] : int32_t(i)) << " at (" << g.px[i] << ", "
+        << g.py[i] << ", " << g.pz[i] << ") radius " << g.radius[i];
     return out.str();
 }
 
 }  // namespace
 
 uint64_t GlobuleBins::pack(int64_t bx, int64_t by, int64_t bz) {
-    return (uint64_t(bx + kOffset) << 42) | (uint64_t(by + kOffset) << 21) |
-           uint64_t(bz + kOffset);
+    return (uint64_t(bx + kOffset) << 42) | (uint64_t(by + kOffset) << 21) | uint64_t(bz + kOffset);
 }
 
 std::array<int64_t, 3> GlobuleBins::unpack(uint64_t key) {

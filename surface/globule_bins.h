@@ -22,7 +22,7 @@
 namespace globular {
 
 class GlobuleBins {
-public:
+  public:
     static constexpr int kBlockLog2 = 3;  ///< matches openvdb::FloatTree's 8^3 leaves
     static constexpr int kBlockDim = 1 << kBlockLog2;
     /// Block coordinates are packed into 21 bits each, so voxel coordinates must stay
@@ -68,13 +68,13 @@ public:
     static uint64_t pack(int64_t bx, int64_t by, int64_t bz);
     static std::array<int64_t, 3> unpack(uint64_t key);
 
-private:
+  private:
     std::pair<uint32_t, uint32_t> cellRange(int64_t bx, int64_t by, int64_t bz) const;
 
-    std::vector<double> mCentre;      ///< x y z per globule, index space
-    std::vector<float> mInfluence;    ///< per globule, voxels (0 when left out)
-    std::vector<uint32_t> mSorted;    ///< binned globules ordered by (block, index)
-    std::vector<uint64_t> mCellKeys;  ///< distinct centre blocks, ascending
+    std::vector<double> mCentre;       ///< x y z per globule, index space
+    std::vector<float> mInfluence;     ///< per globule, voxels (0 when left out)
+    std::vector<uint32_t> mSorted;     ///< binned globules ordered by (block, index)
+    std::vector<uint64_t> mCellKeys;   ///< distinct centre blocks, ascending
     std::vector<uint32_t> mCellStart;  ///< mSorted range of each cell; size cells + 1
     std::vector<uint64_t> mCandidates;
     int mReach = 0;

@@ -16,8 +16,8 @@ FloatGrid::Ptr fieldToLevelSet(const FloatGrid& field, double isoValue, double b
     // levelSetRebuild meshes the iso surface and re-voxelises it with signs from a flood
     // fill of the exterior, so it works on a density-like field (larger inside) as well as
     // on a distance field.
-    FloatGrid::Ptr levelSet = openvdb::tools::levelSetRebuild(field, float(isoValue),
-                                                               float(bandWidth), float(bandWidth));
+    FloatGrid::Ptr levelSet =
+        openvdb::tools::levelSetRebuild(field, float(isoValue), float(bandWidth), float(bandWidth));
     levelSet->setGridClass(openvdb::GRID_LEVEL_SET);
     levelSet->setName("surface");
     return levelSet;
@@ -30,7 +30,9 @@ void applyFilters(FloatGrid& levelSet, const std::vector<FilterStep>& chain) {
     for (const FilterStep& step : chain) {
         const int count = int(step.amount);
         switch (step.kind) {
-            case FilterKind::Gaussian: filter.gaussian(count); break;
+            case FilterKind::Gaussian:
+                filter.gaussian(count);
+                break;
             case FilterKind::MeanCurvature:
                 for (int i = 0; i < count; ++i) filter.meanCurvature();
                 break;
@@ -39,8 +41,12 @@ void applyFilters(FloatGrid& levelSet, const std::vector<FilterStep>& chain) {
                 break;
             // offset() adds to the distance: negative moves the surface outward. It
             // advances in half-voxel steps with renormalisation, so any distance is safe.
-            case FilterKind::Dilate: filter.offset(float(-step.amount * voxel)); break;
-            case FilterKind::Erode: filter.offset(float(step.amount * voxel)); break;
+            case FilterKind::Dilate:
+                filter.offset(float(-step.amount * voxel));
+                break;
+            case FilterKind::Erode:
+                filter.offset(float(step.amount * voxel));
+                break;
         }
     }
 }

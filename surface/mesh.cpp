@@ -184,21 +184,26 @@ PlyType typeFromName(const std::string& name) {
 std::size_t typeSize(PlyType t) {
     switch (t) {
         case PlyType::Int8:
-        case PlyType::UInt8: return 1;
+        case PlyType::UInt8:
+            return 1;
         case PlyType::Int16:
-        case PlyType::UInt16: return 2;
+        case PlyType::UInt16:
+            return 2;
         case PlyType::Int32:
         case PlyType::UInt32:
-        case PlyType::Float32: return 4;
-        case PlyType::Float64: return 8;
-        case PlyType::None: return 0;
+        case PlyType::Float32:
+            return 4;
+        case PlyType::Float64:
+            return 8;
+        case PlyType::None:
+            return 0;
     }
     return 0;
 }
 
 /// Walks the body of a PLY file value by value, in ascii or binary.
 class PlyCursor {
-public:
+  public:
     PlyCursor(const fs::path& path, const std::string& data, std::size_t offset, bool ascii,
               bool bigEndian)
         : mPath(path), mData(data), mPos(offset), mAscii(ascii), mBigEndian(bigEndian) {}
@@ -212,15 +217,24 @@ public:
         mPos += size;
         if (mBigEndian) std::reverse(bytes, bytes + size);
         switch (type) {
-            case PlyType::Int8: return double(int8_t(bytes[0]));
-            case PlyType::UInt8: return double(bytes[0]);
-            case PlyType::Int16: return decode<int16_t>(bytes);
-            case PlyType::UInt16: return decode<uint16_t>(bytes);
-            case PlyType::Int32: return decode<int32_t>(bytes);
-            case PlyType::UInt32: return decode<uint32_t>(bytes);
-            case PlyType::Float32: return decode<float>(bytes);
-            case PlyType::Float64: return decode<double>(bytes);
-            case PlyType::None: break;
+            case PlyType::Int8:
+                return double(int8_t(bytes[0]));
+            case PlyType::UInt8:
+                return double(bytes[0]);
+            case PlyType::Int16:
+                return decode<int16_t>(bytes);
+            case PlyType::UInt16:
+                return decode<uint16_t>(bytes);
+            case PlyType::Int32:
+                return decode<int32_t>(bytes);
+            case PlyType::UInt32:
+                return decode<uint32_t>(bytes);
+            case PlyType::Float32:
+                return decode<float>(bytes);
+            case PlyType::Float64:
+                return decode<double>(bytes);
+            case PlyType::None:
+                break;
         }
         fail("unknown property type");
     }
@@ -231,7 +245,7 @@ public:
         throw IoError("cannot read mesh " + mPath.string() + ": " + problem);
     }
 
-private:
+  private:
     template <typename T>
     static double decode(const unsigned char* bytes) {
         T value;
@@ -248,8 +262,7 @@ private:
         const char* begin = mData.data() + mPos;
         auto [end, ec] = std::from_chars(begin, mData.data() + mData.size(), value);
         if (ec != std::errc()) {
-            fail("bad number '" + std::string(begin, std::min<std::size_t>(16, remaining())) +
-                 "'");
+            fail("bad number '" + std::string(begin, std::min<std::size_t>(16, remaining())) + "'");
         }
         mPos += std::size_t(end - begin);
         return value;

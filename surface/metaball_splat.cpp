@@ -80,8 +80,8 @@ std::unique_ptr<LeafType> splatBlock(const GlobuleBins& bins, uint64_t key,
             for (int y = y0; y <= y1; ++y) {
                 const float qxy = qx + (float(y) - cy) * (float(y) - cy) * invR2;
                 if (qxy >= 1.0f) continue;
-                float* row = sum + (x << (2 * GlobuleBins::kBlockLog2)) +
-                             (y << GlobuleBins::kBlockLog2);
+                float* row =
+                    sum + (x << (2 * GlobuleBins::kBlockLog2)) + (y << GlobuleBins::kBlockLog2);
                 Row values;
                 std::memcpy(&values, row, sizeof values);
                 values += kernel(qxy + qz);
@@ -121,9 +121,15 @@ FloatGrid::Ptr splatMetaballs(const Globules& globules, const MetaballKernel& ke
     const GlobuleBins bins(globules, voxelSize, influence);
     std::vector<std::unique_ptr<LeafType>> leaves(bins.candidateBlocks().size());
     switch (kernel.type) {
-        case KernelType::Wyvill: splatAll<KernelType::Wyvill>(bins, kernel, leaves); break;
-        case KernelType::Blinn: splatAll<KernelType::Blinn>(bins, kernel, leaves); break;
-        case KernelType::Murakami: splatAll<KernelType::Murakami>(bins, kernel, leaves); break;
+        case KernelType::Wyvill:
+            splatAll<KernelType::Wyvill>(bins, kernel, leaves);
+            break;
+        case KernelType::Blinn:
+            splatAll<KernelType::Blinn>(bins, kernel, leaves);
+            break;
+        case KernelType::Murakami:
+            splatAll<KernelType::Murakami>(bins, kernel, leaves);
+            break;
     }
 
     auto grid = FloatGrid::create(0.0f);

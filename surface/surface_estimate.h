@@ -12,7 +12,7 @@
 namespace globular {
 
 struct SurfaceEstimate {
-    double voxelSize = 0;        ///< world units, as resolved for the frame
+    double voxelSize = 0;  ///< world units, as resolved for the frame
     std::size_t globules = 0;
     std::size_t fieldLeaves = 0;  ///< upper bound on the metaball field's 8^3 leaves
     uint64_t voxels = 0;          ///< fieldLeaves * 512: voxels the field allocates

@@ -17,8 +17,8 @@ SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& se
     frame.voxelSize = resolveVoxelSize(settings, globules);
     openvdb::FloatGrid::Ptr levelSet;
     {
-        const auto field =
-            splatMetaballs(globules, settings.metaballKernel(), settings.influence, frame.voxelSize);
+        const auto field = splatMetaballs(globules, settings.metaballKernel(), settings.influence,
+                                          frame.voxelSize);
         frame.fieldLeaves = field->tree().leafCount();
         levelSet = fieldToLevelSet(*field, settings.isoValue, settings.bandWidth);
     }  // the field is the largest grid: free it before the level-set steps

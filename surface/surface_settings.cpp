@@ -94,9 +94,9 @@ void SurfaceSettings::validate() const {
     // clamped background and flatten the surface instead of smoothing it.
     for (const auto& step : chain) {
         if (step.kind == FilterKind::Gaussian && step.amount > bandWidth) {
-            badKey("filters", "gaussian:" + text(step.amount) + " reaches " +
-                                  text(step.amount) + " voxels but band_width is " +
-                                  text(bandWidth) + "; raise band_width or narrow the filter");
+            badKey("filters", "gaussian:" + text(step.amount) + " reaches " + text(step.amount) +
+                                  " voxels but band_width is " + text(bandWidth) +
+                                  "; raise band_width or narrow the filter");
         }
     }
 }

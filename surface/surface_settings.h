@@ -28,19 +28,19 @@ namespace globular {
 class SettingsSection;
 
 struct SurfaceSettings {
-    double voxelSize = 0.0;        ///< world units; 0 = medianRadius / voxelsPerRadius
-    double voxelsPerRadius = 4.0;  ///< voxels across one globule radius when auto
-    std::string kernel = "wyvill";  ///< "wyvill" | "blinn" | "murakami"
-    double influence = 2.0;        ///< influence radius / globule radius
-    double isoValue = 0.5;         ///< field level of the surface, in (0, 1)
-    double blinnSharpness = 4.0;   ///< Blinn's 'a' (exp(-a r^2/R^2)), dimensionless
-    double bandWidth = 3.0;        ///< narrow-band half width, voxels
-    std::string filters;           ///< level-set filter chain (filter_chain.h)
-    double dropletVolume = 0.0;    ///< world units^3; pieces below are removed; 0 keeps all
-    double adaptivity = 0.0;       ///< mesh adaptivity in [0, 1]; 0 = uniform
+    double voxelSize = 0.0;          ///< world units; 0 = medianRadius / voxelsPerRadius
+    double voxelsPerRadius = 4.0;    ///< voxels across one globule radius when auto
+    std::string kernel = "wyvill";   ///< "wyvill" | "blinn" | "murakami"
+    double influence = 2.0;          ///< influence radius / globule radius
+    double isoValue = 0.5;           ///< field level of the surface, in (0, 1)
+    double blinnSharpness = 4.0;     ///< Blinn's 'a' (exp(-a r^2/R^2)), dimensionless
+    double bandWidth = 3.0;          ///< narrow-band half width, voxels
+    std::string filters;             ///< level-set filter chain (filter_chain.h)
+    double dropletVolume = 0.0;      ///< world units^3; pieces below are removed; 0 keeps all
+    double adaptivity = 0.0;         ///< mesh adaptivity in [0, 1]; 0 = uniform
     std::string meshFormat = "ply";  ///< "ply" | "obj"
-    int64_t framesInFlight = 0;    ///< frames surfaced at once; 0 = auto (threads, memory)
-    double memoryLimitGiB = 0.0;   ///< GiB a frame may use; 0 = the memory now available
+    int64_t framesInFlight = 0;      ///< frames surfaced at once; 0 = auto (threads, memory)
+    double memoryLimitGiB = 0.0;     ///< GiB a frame may use; 0 = the memory now available
 
     /// Binds every [surface] key to its field.
     void describe(SettingsSection& section);

@@ -95,8 +95,9 @@ void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx) {
                                 ? uint64_t(settings.memoryLimitGiB * 1024.0 * 1024.0 * 1024.0)
                                 : availableMemoryBytes();
     if (budget == 0) {
-        report.warn("surface: cannot tell how much memory is available (no /proc/meminfo); "
-                    "frames are not checked against it, set [surface] memory_limit_gib");
+        report.warn(
+            "surface: cannot tell how much memory is available (no /proc/meminfo); "
+            "frames are not checked against it, set [surface] memory_limit_gib");
     }
 
     int largestFrame = ctx.firstFrame;

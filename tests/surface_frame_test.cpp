@@ -1,5 +1,7 @@
 // Surfacing whole frames through the OpenVDB-free API: shapes, topology, filters,
 // determinism. Grids themselves are checked in surface_vdb_test.cpp.
+#include "surface_frame.h"
+
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
@@ -8,7 +10,6 @@
 
 #include "errors.h"
 #include "mesh_topology.h"
-#include "surface_frame.h"
 
 namespace globular {
 namespace {
@@ -35,9 +36,9 @@ Globules blob(int count, unsigned seed) {
 double meanDistance(const TriangleMesh& mesh, Vec3 centre) {
     double sum = 0;
     for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
-        sum += length(Vec3{mesh.positions[3 * v], mesh.positions[3 * v + 1],
-                           mesh.positions[3 * v + 2]} -
-                      centre);
+        sum += length(
+            Vec3{mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]} -
+            centre);
     }
     return sum / double(mesh.vertexCount());
 }
@@ -74,16 +75,15 @@ TEST(SurfaceFrame, TwoGlobulesBridgeOnlyWhenCloserThanTheMergeDistance) {
     s.voxelSize = 0.1;
     const double merge = 2.0 * 2.0 * std::sqrt(0.4421915851);
     auto pieces = [&](double d) {
-        const SurfaceFrame f =
-            surfaceGlobules(globulesAt({{-d / 2, 0, 0}, {d / 2, 0, 0}}), s);
+        const SurfaceFrame f = surfaceGlobules(globulesAt({{-d / 2, 0, 0}, {d / 2, 0, 0}}), s);
         const MeshTopology topo = analyzeMesh(f.mesh);
         EXPECT_TRUE(topo.watertight()) << d;
         return topo.components;
     };
-    EXPECT_EQ(pieces(6.0), 2u);             // fields do not even overlap
-    EXPECT_EQ(pieces(merge + 0.25), 2u);    // overlapping fields, still apart
-    EXPECT_EQ(pieces(merge - 0.25), 1u);    // a bridge
-    EXPECT_EQ(pieces(1.0), 1u);             // one blob
+    EXPECT_EQ(pieces(6.0), 2u);           // fields do not even overlap
+    EXPECT_EQ(pieces(merge + 0.25), 2u);  // overlapping fields, still apart
+    EXPECT_EQ(pieces(merge - 0.25), 1u);  // a bridge
+    EXPECT_EQ(pieces(1.0), 1u);           // one blob
 
     // The bridge crosses the midplane: vertices lie on it, around the axis.
     const SurfaceFrame bridge =

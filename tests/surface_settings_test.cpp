@@ -1,3 +1,5 @@
+#include "surface_settings.h"
+
 #include <gtest/gtest.h>
 
 #include <string>
@@ -5,7 +7,6 @@
 #include "errors.h"
 #include "filter_chain.h"
 #include "settings_schema.h"
-#include "surface_settings.h"
 
 namespace globular {
 namespace {
@@ -20,7 +21,8 @@ std::string errorOf(const std::function<void()>& f) {
 }
 
 TEST(FilterChain, ParsesStepsInOrderWithDefaultAmounts) {
-    const auto chain = parseFilterChain(" gaussian:2, dilate:1.5 ,erode, mean_curvature:3,laplacian");
+    const auto chain =
+        parseFilterChain(" gaussian:2, dilate:1.5 ,erode, mean_curvature:3,laplacian");
     const std::vector<FilterStep> expected{{FilterKind::Gaussian, 2},
                                            {FilterKind::Dilate, 1.5},
                                            {FilterKind::Erode, 1},
@@ -35,14 +37,12 @@ TEST(FilterChain, ParsesStepsInOrderWithDefaultAmounts) {
 TEST(FilterChain, RejectsBadStepsWithAReason) {
     EXPECT_NE(errorOf([] { parseFilterChain("gausian:2"); }).find("did you mean 'gaussian'"),
               std::string::npos);
-    EXPECT_NE(errorOf([] { parseFilterChain("gaussian:1.5"); }).find("integer"),
-              std::string::npos);
+    EXPECT_NE(errorOf([] { parseFilterChain("gaussian:1.5"); }).find("integer"), std::string::npos);
     EXPECT_NE(errorOf([] { parseFilterChain("gaussian:0"); }).find("[1, 8]"), std::string::npos);
     EXPECT_NE(errorOf([] { parseFilterChain("dilate:0"); }).find("(0, 64]"), std::string::npos);
     EXPECT_NE(errorOf([] { parseFilterChain("dilate:x"); }).find("not a number"),
               std::string::npos);
-    EXPECT_NE(errorOf([] { parseFilterChain("dilate:"); }).find("not a number"),
-              std::string::npos);
+    EXPECT_NE(errorOf([] { parseFilterChain("dilate:"); }).find("not a number"), std::string::npos);
     EXPECT_NE(errorOf([] { parseFilterChain("erode:1,,dilate:1"); }).find("step 2 is empty"),
               std::string::npos);
     EXPECT_NE(errorOf([] { parseFilterChain("erode:1,"); }).find("step 2 is empty"),
@@ -53,11 +53,10 @@ TEST(SurfaceSettings, DescribeBindsEveryKeyWithRanges) {
     SurfaceSettings settings;
     SettingsSection section("surface");
     settings.describe(section);
-    const std::vector<std::string> keys{"voxel_size",      "voxels_per_radius", "kernel",
-                                        "influence",       "iso_value",         "blinn_sharpness",
-                                        "band_width",      "filters",           "droplet_volume",
-                                        "adaptivity",      "mesh_format",       "frames_in_flight",
-                                        "memory_limit_gib"};
+    const std::vector<std::string> keys{
+        "voxel_size",      "voxels_per_radius", "kernel",          "influence",      "iso_value",
+        "blinn_sharpness", "band_width",        "filters",         "droplet_volume", "adaptivity",
+        "mesh_format",     "frames_in_flight",  "memory_limit_gib"};
     EXPECT_EQ(section.keys(), keys);
 
     section.assign("voxel_size", {0.05, {"scene.toml", 3, 1}});

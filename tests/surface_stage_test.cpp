@@ -1,4 +1,6 @@
 // The surface stage end to end: caches in, VDB and mesh files out, refusals up front.
+#include "surface_stage.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -12,7 +14,6 @@
 #include "mesh_topology.h"
 #include "surface_estimate.h"
 #include "surface_frame.h"
-#include "surface_stage.h"
 
 namespace globular {
 namespace {
@@ -20,7 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 
 class RecordingReporter final : public Reporter {
-public:
+  public:
     void info(std::string_view m) override { infos.emplace_back(m); }
     void warn(std::string_view m) override { warnings.emplace_back(m); }
     void progress(std::string_view stage, long done, long total) override {
@@ -82,8 +83,7 @@ TEST(SurfaceStage, WritesVdbAndMeshForTheRequestedFramesOnly) {
     }
     // No temporaries left behind.
     for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos)
-            << entry.path();
+        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
     }
 }
 
@@ -144,8 +144,7 @@ TEST(SurfaceStage, RefusesUpFrontWhenTheEstimateExceedsMemory) {
 
 TEST(SurfaceStage, RejectsAnEmptyFrameRange) {
     NullReporter quiet;
-    EXPECT_THROW(runSurfaceStage(SurfaceSettings{}, {freshDir("range"), 3, 2, &quiet}),
-                 SceneError);
+    EXPECT_THROW(runSurfaceStage(SurfaceSettings{}, {freshDir("range"), 3, 2, &quiet}), SceneError);
 }
 
 }  // namespace

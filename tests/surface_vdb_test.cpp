@@ -32,7 +32,8 @@ std::string run(const std::string& command) {
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe) return out;
     std::array<char, 4096> buffer;
-    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) out.append(buffer.data(), n);
+    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
+        out.append(buffer.data(), n);
     pclose(pipe);
     return out;
 }
@@ -43,7 +44,8 @@ void expectSameGrid(const openvdb::FloatGrid& a, const openvdb::FloatGrid& b) {
     auto other = b.getConstAccessor();
     std::size_t differing = 0;
     for (auto it = a.cbeginValueAll(); it; ++it) {
-        if (other.getValue(it.getCoord()) != *it || other.isValueOn(it.getCoord()) != it.isValueOn()) {
+        if (other.getValue(it.getCoord()) != *it ||
+            other.isValueOn(it.getCoord()) != it.isValueOn()) {
             ++differing;
         }
     }
