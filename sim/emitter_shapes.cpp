@@ -64,7 +64,7 @@ std::vector<Vec3> boxPositions(const EmitterSettings& s, Jitter& jitter) {
     // overflow an integer.
     const auto cells = [&](double e) { return std::floor(e / s.spacing); };
     const double lattice = cells(extent.x) * cells(extent.y) * cells(extent.z);
-    if (s.count == 0 && lattice > double(kMaxEmitterGlobules)) {
+    if (s.count == 0 && !(lattice <= double(kMaxEmitterGlobules))) {  // NaN: inf * 0
         throw ResourceError("box emitter: filling the box at spacing " +
                             std::to_string(s.spacing) + " would make " +
                             std::to_string(lattice) + " globules, more than the limit of " +
@@ -106,6 +106,15 @@ public:
         mU = normalized(cross(mDirection, helper));
         mW = cross(mDirection, mU);
         const double row = s.spacing * std::sqrt(3.0) / 2;
+        // A layer holds about 3.6 (nozzle_radius / spacing)^2 globules: refuse one no run
+        // could hold before looping over it (its bounds would overflow an int).
+        const double perLayer = 3.63 * (s.nozzleRadius / s.spacing) * (s.nozzleRadius / s.spacing);
+        if (!(perLayer <= double(kMaxEmitterGlobules))) {
+            throw SceneError("spout emitter: nozzle_radius " + std::to_string(s.nozzleRadius) +
+                             " at spacing " + std::to_string(s.spacing) + " makes layers of " +
+                             std::to_string(perLayer) + " globules, more than the limit of " +
+                             std::to_string(kMaxEmitterGlobules));
+        }
         for (int j = -int(s.nozzleRadius / row) - 1; j <= int(s.nozzleRadius / row) + 1; ++j) {
             for (int i = -int(s.nozzleRadius / s.spacing) - 2;
                  i <= int(s.nozzleRadius / s.spacing) + 2; ++i) {

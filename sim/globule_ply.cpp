@@ -250,7 +250,9 @@ struct AsciiCursor {
 };
 
 std::size_t listLength(double count) {
-    if (!(count >= 0) || count != std::floor(count)) {
+    // Bounded before the conversion (1e300 would overflow it): no PLY count type goes
+    // past 2^32 - 1.
+    if (!(count >= 0) || count != std::floor(count) || count > 4294967295.0) {
         throw std::runtime_error("bad list length " + std::to_string(count));
     }
     return std::size_t(count);

@@ -49,7 +49,8 @@ public:
         const uint64_t n = value<uint64_t>();
         if (n > (mBytes.size() - mOffset) / sizeof(T)) fail("array longer than the file");
         std::vector<T> v(n);
-        std::memcpy(v.data(), mBytes.data() + mOffset, n * sizeof(T));
+        // An empty vector's data() may be null, and memcpy from or to null is undefined.
+        if (n > 0) std::memcpy(v.data(), mBytes.data() + mOffset, n * sizeof(T));
         mOffset += n * sizeof(T);
         return v;
     }
