@@ -15,6 +15,7 @@ packages=(
     libtomlplusplus-dev libcli11-dev
     libgtest-dev libgmock-dev libbenchmark-dev
     gnuplot-nox
+    clang libclang-rt-14-dev    # libFuzzer targets (scripts/ci_reliability.sh)
 )
 if [[ "${WITH_PEERS:-0}" == 1 ]]; then
     packages+=(lammps hyperfine ffmpeg)
