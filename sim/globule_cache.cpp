@@ -36,13 +36,7 @@ void initializeVdb() {
 }
 
 void checkArraySizes(const fs::path& path, const Globules& g) {
-    const std::size_t n = g.size();
-    for (const auto* a : {&g.py, &g.pz, &g.vx, &g.vy, &g.vz, &g.radius}) {
-        if (a->size() != n) {
-            throw IoError("cannot write " + path.string() + ": globule arrays differ in size");
-        }
-    }
-    if (g.id.size() != n) {
+    if (!g.consistent()) {
         throw IoError("cannot write " + path.string() + ": globule arrays differ in size");
     }
 }

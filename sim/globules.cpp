@@ -11,6 +11,14 @@ void permuteArray(std::vector<T>& values, const std::vector<uint32_t>& order) {
 }
 }  // namespace
 
+bool Globules::consistent() const {
+    const std::size_t n = size();
+    for (const auto* a : {&py, &pz, &vx, &vy, &vz, &radius, &mass}) {
+        if (a->size() != n) return false;
+    }
+    return id.size() == n;
+}
+
 void Globules::reserve(std::size_t n) {
     for (auto* a : {&px, &py, &pz, &vx, &vy, &vz, &radius, &mass}) a->reserve(n);
     id.reserve(n);

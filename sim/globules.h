@@ -19,6 +19,8 @@ struct Globules {
     std::vector<int32_t> id;        ///< stable identity, unique, survives reordering
 
     std::size_t size() const { return px.size(); }
+    /// Whether every array holds size() elements.
+    bool consistent() const;
     bool empty() const { return px.empty(); }
 
     void reserve(std::size_t n);
