@@ -139,7 +139,6 @@ void applyOverride(toml::table& root, const std::string& text, OverridePlaces& p
         throw SceneError(where + ": the key needs a section, e.g. material.b1 or emitter.0.count");
     }
     // The value is TOML; a bare word that is not TOML is taken as a string (render.mode=surface).
-    toml::node_view<toml::node> parsedValue;
     toml::table holder;
     try {
         holder = toml::parse("v = " + valueText);

@@ -6,4 +6,6 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$root/scripts/setup.sh"
 build=${BUILD_DIR:-$root/build}
+# Under the sanitizers, leaks inside third-party libraries (OSMesa) are not ours.
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$root/scripts/lsan_suppressions.txt}
 ctest --test-dir "$build" --output-on-failure -j "$(nproc)" --timeout 900

@@ -46,7 +46,9 @@ inline void accumulateRun(const PairForce& p, const SortedGlobules& s, uint32_t 
     const float invCr2 = 1.0f / (p.cr * p.cr), invCd2 = 1.0f / (p.cd * p.cd);
     const float minFraction2 = kMinDistanceFraction * kMinDistanceFraction;
     float ax = 0, ay = 0, az = 0;
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC ivdep
+#endif
     for (uint32_t j = begin; j < end; ++j) {
         const float dx = x - sx[j], dy = y - sy[j], dz = z - sz[j];
         const float dvx = vx - svx[j], dvy = vy - svy[j], dvz = vz - svz[j];
