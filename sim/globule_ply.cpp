@@ -232,7 +232,8 @@ struct AsciiCursor {
         const char* last = data.data() + end;
         double v = 0;
         if (*begin == '+') ++begin;  // from_chars rejects a leading '+'
-        if (std::from_chars(begin, last, v).ptr != last) {
+        const auto [ptr, ec] = std::from_chars(begin, last, v);
+        if (ptr != last || ec != std::errc()) {  // out of range (1e999) is an error too
             throw std::runtime_error("line " + std::to_string(line) + ": bad number '" +
                                      std::string(data.data() + pos, last).substr(0, 40) + "'");
         }

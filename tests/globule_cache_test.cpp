@@ -307,6 +307,7 @@ TEST_F(GlobuleCacheTest, PlyRejectsMalformedInputNamingTheFile) {
          "property float y\nend_header\n1 2\n"},
         {"short_ascii", header + "1 2 3\n4 5\n"},
         {"bad_number", header + "1 2 3\n4 five 6\n"},
+        {"out_of_range_number", header + "1 2 3\n4 1e999 6\n"},
         {"lying_count",
          "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\n"
          "property float x\nproperty float y\nproperty float z\nend_header\n" +
