@@ -12,13 +12,13 @@
 #include <fstream>
 #include <limits>
 #include <numeric>
-#include <optional>
 #include <string>
 #include <string_view>
 
 #include "atomic_file.h"
 #include "errors.h"
 #include "globule_cache.h"
+#include "ply_types.h"
 
 namespace globular {
 
@@ -34,40 +34,6 @@ void checkArraySizes(const fs::path& path, const Globules& g) {
 
 static_assert(std::endian::native == std::endian::little,
               "binary PLY input and output assume a little-endian host");
-
-enum class PlyType { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
-
-std::optional<PlyType> plyTypeNamed(std::string_view name) {
-    static const std::pair<std::string_view, PlyType> kNames[] = {
-        {"char", PlyType::Int8},      {"int8", PlyType::Int8},       {"uchar", PlyType::UInt8},
-        {"uint8", PlyType::UInt8},    {"short", PlyType::Int16},     {"int16", PlyType::Int16},
-        {"ushort", PlyType::UInt16},  {"uint16", PlyType::UInt16},   {"int", PlyType::Int32},
-        {"int32", PlyType::Int32},    {"uint", PlyType::UInt32},     {"uint32", PlyType::UInt32},
-        {"float", PlyType::Float32},  {"float32", PlyType::Float32}, {"double", PlyType::Float64},
-        {"float64", PlyType::Float64}};
-    for (const auto& [n, t] : kNames) {
-        if (n == name) return t;
-    }
-    return std::nullopt;
-}
-
-std::size_t sizeOf(PlyType t) {
-    switch (t) {
-        case PlyType::Int8:
-        case PlyType::UInt8:
-            return 1;
-        case PlyType::Int16:
-        case PlyType::UInt16:
-            return 2;
-        case PlyType::Int32:
-        case PlyType::UInt32:
-        case PlyType::Float32:
-            return 4;
-        case PlyType::Float64:
-            return 8;
-    }
-    return 0;
-}
 
 template <typename T>
 double loadAs(const char* p) {
@@ -94,6 +60,8 @@ double loadBinary(const char* p, PlyType t) {
             return loadAs<float>(p);
         case PlyType::Float64:
             return loadAs<double>(p);
+        case PlyType::None:
+            break;
     }
     return 0;
 }
@@ -181,11 +149,11 @@ PlyHeader parsePlyHeader(const std::string& data) {
             if (!isList && words.size() != 3) throw fail("malformed property line");
             const auto type = plyTypeNamed(words[isList ? 3 : 1]);
             const auto countType = isList ? plyTypeNamed(words[2]) : type;
-            if (!type || !countType) {
+            if (type == PlyType::None || countType == PlyType::None) {
                 throw fail("unknown property type in '" + std::string(line) + "'");
             }
             header.elements.back().properties.push_back(
-                {std::string(words.back()), *type, isList, *countType});
+                {std::string(words.back()), type, isList, countType});
         } else {
             throw fail("unexpected '" + std::string(line.substr(0, 80)) + "'");
         }
@@ -200,7 +168,7 @@ struct BinaryCursor {
 
     std::size_t remaining() const { return data.size() - pos; }
     double read(PlyType t) {
-        const std::size_t n = sizeOf(t);
+        const std::size_t n = plyTypeSize(t);
         if (remaining() < n) throw std::runtime_error("data is truncated");
         const double v = loadBinary(data.data() + pos, t);
         pos += n;
@@ -209,7 +177,7 @@ struct BinaryCursor {
     /// Fewest bytes a row of @p e occupies.
     static std::size_t minRowSize(const PlyElement& e) {
         std::size_t n = 0;
-        for (const auto& p : e.properties) n += sizeOf(p.isList ? p.countType : p.type);
+        for (const auto& p : e.properties) n += plyTypeSize(p.isList ? p.countType : p.type);
         return n;
     }
 };

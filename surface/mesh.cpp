@@ -12,6 +12,7 @@
 #include <string>
 
 #include "atomic_file.h"
+#include "ply_types.h"
 #include "errors.h"
 
 namespace globular {
@@ -153,8 +154,6 @@ void writeMeshObj(const fs::path& path, const TriangleMesh& mesh) {
 
 namespace {
 
-enum class PlyType { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64, None };
-
 struct PlyProperty {
     std::string name;
     PlyType type = PlyType::None;       ///< value type (of the items, for a list)
@@ -167,40 +166,6 @@ struct PlyElement {
     std::vector<PlyProperty> properties;
 };
 
-PlyType typeFromName(const std::string& name) {
-    static const std::pair<const char*, PlyType> kNames[] = {
-        {"char", PlyType::Int8},      {"int8", PlyType::Int8},       {"uchar", PlyType::UInt8},
-        {"uint8", PlyType::UInt8},    {"short", PlyType::Int16},     {"int16", PlyType::Int16},
-        {"ushort", PlyType::UInt16},  {"uint16", PlyType::UInt16},   {"int", PlyType::Int32},
-        {"int32", PlyType::Int32},    {"uint", PlyType::UInt32},     {"uint32", PlyType::UInt32},
-        {"float", PlyType::Float32},  {"float32", PlyType::Float32}, {"double", PlyType::Float64},
-        {"float64", PlyType::Float64}};
-    for (const auto& [n, t] : kNames) {
-        if (name == n) return t;
-    }
-    return PlyType::None;
-}
-
-std::size_t typeSize(PlyType t) {
-    switch (t) {
-        case PlyType::Int8:
-        case PlyType::UInt8:
-            return 1;
-        case PlyType::Int16:
-        case PlyType::UInt16:
-            return 2;
-        case PlyType::Int32:
-        case PlyType::UInt32:
-        case PlyType::Float32:
-            return 4;
-        case PlyType::Float64:
-            return 8;
-        case PlyType::None:
-            return 0;
-    }
-    return 0;
-}
-
 /// Walks the body of a PLY file value by value, in ascii or binary.
 class PlyCursor {
   public:
@@ -210,7 +175,7 @@ class PlyCursor {
 
     double read(PlyType type) {
         if (mAscii) return readAscii();
-        const std::size_t size = typeSize(type);
+        const std::size_t size = plyTypeSize(type);
         if (mPos + size > mData.size()) fail("truncated: the file ends inside its data");
         unsigned char bytes[8];
         std::memcpy(bytes, mData.data() + mPos, size);
@@ -327,12 +292,12 @@ TriangleMesh readMeshPly(const fs::path& path) {
             if (type == "list") {
                 std::string countType, itemType;
                 words >> countType >> itemType >> p.name;
-                p.countType = typeFromName(countType);
-                p.type = typeFromName(itemType);
+                p.countType = plyTypeNamed(countType);
+                p.type = plyTypeNamed(itemType);
                 if (p.countType == PlyType::None) fail("bad list count type '" + countType + "'");
             } else {
                 words >> p.name;
-                p.type = typeFromName(type);
+                p.type = plyTypeNamed(type);
             }
             if (p.type == PlyType::None || p.name.empty()) fail("bad property '" + line + "'");
             elements.back().properties.push_back(p);

@@ -1,0 +1,17 @@
+#pragma once
+// The scalar types a PLY header may name, shared by every PLY reader (globule clouds in
+// sim/, meshes in surface/).
+
+#include <cstddef>
+#include <string_view>
+
+namespace globular {
+
+enum class PlyType { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64, None };
+
+/// The type a PLY header names ("uchar", "float32", ...), or None when it names none.
+PlyType plyTypeNamed(std::string_view name);
+/// Bytes of one binary value; 0 for None.
+std::size_t plyTypeSize(PlyType type);
+
+}  // namespace globular
