@@ -12,23 +12,12 @@
 #include "mesh.h"
 #include "png_image.h"
 #include "renderer.h"
+#include "recording_reporter.h"
 
 namespace globular {
 namespace {
 
 namespace fs = std::filesystem;
-
-class RecordingReporter final : public Reporter {
-  public:
-    void info(std::string_view m) override { infos.emplace_back(m); }
-    void warn(std::string_view m) override { warnings.emplace_back(m); }
-    void progress(std::string_view stage, long done, long total) override {
-        EXPECT_EQ(stage, "render");
-        steps.emplace_back(done, total);
-    }
-    std::vector<std::string> infos, warnings;
-    std::vector<std::pair<long, long>> steps;
-};
 
 /// Frame f: a globule falling onto a resting one; frame 3 is empty.
 Globules frameGlobules(int f) {
@@ -71,7 +60,7 @@ StageContext context(const fs::path& dir, int first, int last, Reporter& reporte
 TEST(RenderStage, WritesAPngForEachRequestedFrameOnly) {
     const fs::path dir = freshDir("frames");
     writeCaches(dir, 1, 5);
-    RecordingReporter reporter;
+    RecordingReporter reporter("render");
     runRenderStage(smallJob(), context(dir, 2, 4, reporter));
     EXPECT_FALSE(fs::exists(framePngPath(dir, 1)));
     for (int f = 2; f <= 4; ++f) {
@@ -91,7 +80,7 @@ TEST(RenderStage, FramesAreTheRenderersWithTheGivenCamera) {
     RenderJob job = smallJob();
     job.camera.position = {0, 3, 14};
     job.camera.target = {0, 2, 0};
-    RecordingReporter reporter;
+    RecordingReporter reporter("render");
     runRenderStage(job, context(dir, 1, 2, reporter));
     // The same frame drawn directly, with the stage's whole-animation extent.
     SceneExtent extent;
@@ -111,7 +100,7 @@ TEST(RenderStage, FramesAreTheRenderersWithTheGivenCamera) {
 TEST(RenderStage, EmptyFrameRendersTheGround) {
     const fs::path dir = freshDir("empty");
     writeCaches(dir, 3, 3);
-    RecordingReporter reporter;
+    RecordingReporter reporter("render");
     runRenderStage(smallJob(), context(dir, 3, 3, reporter));
     const Image image = readPng(framePngPath(dir, 3));
     // Ground below, background above: the image is not uniform.
@@ -121,7 +110,7 @@ TEST(RenderStage, EmptyFrameRendersTheGround) {
 TEST(RenderStage, MissingCacheNamesTheFileAndTheSimStage) {
     const fs::path dir = freshDir("missing");
     writeCaches(dir, 1, 2);
-    RecordingReporter reporter;
+    RecordingReporter reporter("render");
     try {
         runRenderStage(smallJob(), context(dir, 1, 3, reporter));
         FAIL();
@@ -136,7 +125,7 @@ TEST(RenderStage, MissingCacheNamesTheFileAndTheSimStage) {
 TEST(RenderStage, InvalidSettingsAreSceneErrors) {
     const fs::path dir = freshDir("invalid");
     writeCaches(dir, 1, 1);
-    RecordingReporter reporter;
+    RecordingReporter reporter("render");
     RenderJob job = smallJob();
     job.render.samples = 3;
     EXPECT_THROW(runRenderStage(job, context(dir, 1, 1, reporter)), SceneError);
@@ -152,7 +141,7 @@ TEST(RenderStage, ContactSheetTilesEvenlySpacedFrames) {
     RenderJob job = smallJob();
     job.render.contactSheet = 3;
     job.render.contactTileWidth = 32;
-    RecordingReporter reporter;
+    RecordingReporter reporter("render");
     runRenderStage(job, context(dir, 1, 5, reporter));
     const Image sheet = readPng(dir / "contact_sheet.png");
     EXPECT_EQ(sheet.width, 8 + 3 * (32 + 8));
@@ -169,7 +158,7 @@ TEST(RenderStage, SurfaceModeReadsTheMeshes) {
     writeMeshObj(meshPath(dir, 2, "obj"), mesh);
     RenderJob job = smallJob();
     job.render.mode = "surface";
-    RecordingReporter reporter;
+    RecordingReporter reporter("render");
     runRenderStage(job, context(dir, 1, 1, reporter));
     EXPECT_TRUE(fs::exists(framePngPath(dir, 1)));
     job.meshFormat = "obj";
@@ -190,7 +179,7 @@ TEST(RenderStage, MovieNeedsFfmpegOnPath) {
     writeCaches(dir, 1, 3);
     RenderJob job = smallJob();
     job.render.movie = true;
-    RecordingReporter reporter;
+    RecordingReporter reporter("render");
     const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
     ::setenv("PATH", dir.c_str(), 1);  // a PATH without ffmpeg
     runRenderStage(job, context(dir, 1, 3, reporter));
@@ -206,7 +195,7 @@ TEST(RenderStage, MovieIsAssembledWithFfmpeg) {
     writeCaches(dir, 1, 3);
     RenderJob job = smallJob();
     job.render.movie = true;
-    RecordingReporter reporter;
+    RecordingReporter reporter("render");
     runRenderStage(job, context(dir, 1, 3, reporter));
     ASSERT_TRUE(fs::exists(dir / "movie.mp4"));
     EXPECT_GT(fs::file_size(dir / "movie.mp4"), 500u);

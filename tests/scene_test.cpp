@@ -17,20 +17,12 @@
 #include "reporter.h"
 #include "run_command.h"
 #include "settings_schema.h"
+#include "recording_reporter.h"
 
 namespace globular {
 namespace {
 
 namespace fs = std::filesystem;
-
-class RecordingReporter final : public Reporter {
-  public:
-    void info(std::string_view message) override { infos.emplace_back(message); }
-    void warn(std::string_view message) override { warnings.emplace_back(message); }
-    void progress(std::string_view, long, long) override {}
-
-    std::vector<std::string> infos, warnings;
-};
 
 Scene parse(const std::string& text, const std::vector<std::string>& overrides = {}) {
     NullReporter quiet;

@@ -14,23 +14,12 @@
 #include "mesh_topology.h"
 #include "surface_estimate.h"
 #include "surface_frame.h"
+#include "recording_reporter.h"
 
 namespace globular {
 namespace {
 
 namespace fs = std::filesystem;
-
-class RecordingReporter final : public Reporter {
-  public:
-    void info(std::string_view m) override { infos.emplace_back(m); }
-    void warn(std::string_view m) override { warnings.emplace_back(m); }
-    void progress(std::string_view stage, long done, long total) override {
-        EXPECT_EQ(stage, "surface");
-        steps.emplace_back(done, total);
-    }
-    std::vector<std::string> infos, warnings;
-    std::vector<std::pair<long, long>> steps;
-};
 
 /// Frame f holds two globules f - 1 units apart along x.
 Globules frameGlobules(int f) {
@@ -58,7 +47,7 @@ TEST(SurfaceStage, WritesVdbAndMeshForTheRequestedFramesOnly) {
     writeCaches(dir, 1, 6);
     SurfaceSettings s;
     s.voxelSize = 0.125;
-    RecordingReporter reporter;
+    RecordingReporter reporter("surface");
     runSurfaceStage(s, {dir, 2, 5, &reporter});
 
     for (int f = 1; f <= 6; ++f) {
