@@ -83,21 +83,30 @@ void sumRange(const PairForce& pair, const NeighborWorkspace& w,
               const std::vector<uint32_t>& order, std::size_t begin, std::size_t end,
               Accelerations& forces) {
     const SortedGlobules& s = w.sorted;
-    std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> ranges;
+    const GlobuleArrays arrays{s.x.data(),  s.y.data(),  s.z.data(),     s.vx.data(),
+                               s.vy.data(), s.vz.data(), s.radius.data()};
+    const float reach = pair.cutoff(1.0f), reach2 = reach * reach;
+    std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> runs;
     std::array<int64_t, 3> cell{INT64_MIN, 0, 0};
-    int rangeCount = 0;
+    int runCount = 0;
+    NeighborBatch batch;
     for (std::size_t k = begin; k < end; ++k) {
-        // Consecutive globules mostly share a cell: reuse its neighbour ranges.
+        // Consecutive globules mostly share a cell: reuse its neighbour runs.
         const auto here = w.grid.cellOf(s.x[k], s.y[k], s.z[k]);
         if (here != cell) {
             cell = here;
-            rangeCount = w.grid.neighborRuns(s.x[k], s.y[k], s.z[k], ranges);
+            runCount = w.grid.neighborRuns(s.x[k], s.y[k], s.z[k], runs);
+            std::size_t candidates = 0;
+            for (int b = 0; b < runCount; ++b) candidates += runs[b].second - runs[b].first;
+            batch.reserve(candidates);
+        }
+        batch.count = 0;
+        for (int b = 0; b < runCount; ++b) {
+            collectNeighbors(arrays, runs[b].first, runs[b].second, s.x[k], s.y[k], s.z[k],
+                             s.vx[k], s.vy[k], s.vz[k], s.radius[k], reach2, batch);
         }
         float fx = 0, fy = 0, fz = 0;
-        for (int b = 0; b < rangeCount; ++b) {
-            accumulateRun<M, N>(pair, s, ranges[b].first, ranges[b].second, s.x[k], s.y[k],
-                                s.z[k], s.vx[k], s.vy[k], s.vz[k], s.radius[k], fx, fy, fz);
-        }
+        sumBatch<M, N>(pair, batch, fx, fy, fz);
         const uint32_t i = order[k];
         forces.x[i] = fx;
         forces.y[i] = fy;

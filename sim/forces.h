@@ -31,6 +31,11 @@ struct ExternalForces {
 /// Sum of pair forces on each globule over all others: the paper's O(N^2) reference.
 void pairForcesAllPairs(const Globules& globules, const PairForce& pair, Accelerations& forces);
 
+/// Globule data in neighbour-grid order: contiguous runs per grid bucket.
+struct SortedGlobules {
+    std::vector<float> x, y, z, vx, vy, vz, radius;
+};
+
 /// The neighbour grid and the globules copied into its order, reused between steps.
 struct NeighborWorkspace {
     NeighborGrid grid;

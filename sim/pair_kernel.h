@@ -1,21 +1,102 @@
 #pragma once
-// The force loop's inner kernel: eq. (2)-(5) summed over a contiguous run of candidate
-// globules, branch-free so the compiler vectorises it. Candidates outside both windows
-// contribute exactly zero (S_r = S_d = 0), and so does the globule itself (P = 0), so
-// no test is needed to skip them. Same arithmetic as PairForce::accumulate.
+// The force loop's inner kernels, in two passes per globule:
+//   1. collectNeighbors: test candidates (contiguous runs of the neighbour grid) against
+//      the pair's reach and compact those within it into a NeighborBatch;
+//   2. sumBatch: eq. (2)-(5) summed over the batch, every lane useful.
+// The grid hands about five candidates for each one within reach, so testing them cheaply
+// and evaluating the force only for the rest is what makes the loop fast. With AVX-512
+// both passes use 16 lanes (compress for the compaction, rsqrt14 + one Newton step for
+// 1/D); elsewhere they are plain loops that give the same neighbours in the same order.
+// The arithmetic is PairForce::accumulate's, to single-precision rounding.
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <vector>
+
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#endif
 
 #include "pair_force.h"
 
 namespace globular {
 
-/// Globule data in neighbour-grid order: contiguous runs per grid bucket.
-struct SortedGlobules {
-    std::vector<float> x, y, z, vx, vy, vz, radius;
+/// Read-only view of globule arrays (struct of arrays), in neighbour-grid order.
+struct GlobuleArrays {
+    const float *x, *y, *z, *vx, *vy, *vz, *radius;
 };
+
+/// One globule's neighbours within reach: P = x_i - x_j, V = v_i - v_j and r_i + r_j.
+struct NeighborBatch {
+    static constexpr uint32_t kPadding = 16;  ///< vector stores write up to 16 past count
+    std::vector<float> dx, dy, dz, dvx, dvy, dvz, radiusSum;
+    uint32_t count = 0;
+
+    /// Room for @p candidates entries.
+    void reserve(std::size_t candidates) {
+        for (auto* a : {&dx, &dy, &dz, &dvx, &dvy, &dvz, &radiusSum}) {
+            if (a->size() < candidates + kPadding) a->resize(candidates + kPadding);
+        }
+    }
+};
+
+/// Appends to @p out the globules j in [begin, end) of @p s with 0 < |x_i - x_j| <
+/// reach (r_i + r_j), reach = PairForce::cutoff(1). Globule i itself (and any globule at
+/// exactly its position, whose force is zero) is left out. @p out has room for them.
+inline void collectNeighbors(const GlobuleArrays& s, uint32_t begin, uint32_t end, float x,
+                             float y, float z, float vx, float vy, float vz, float r,
+                             float reach2, NeighborBatch& out) {
+    uint32_t count = out.count;
+    float *bx = out.dx.data(), *by = out.dy.data(), *bz = out.dz.data();
+    float *bvx = out.dvx.data(), *bvy = out.dvy.data(), *bvz = out.dvz.data();
+    float* bsum = out.radiusSum.data();
+#if defined(__AVX512F__)
+    const __m512 px = _mm512_set1_ps(x), py = _mm512_set1_ps(y), pz = _mm512_set1_ps(z);
+    const __m512 pvx = _mm512_set1_ps(vx), pvy = _mm512_set1_ps(vy), pvz = _mm512_set1_ps(vz);
+    const __m512 pr = _mm512_set1_ps(r), reach2v = _mm512_set1_ps(reach2);
+    const __m512 zero = _mm512_setzero_ps();
+    for (uint32_t j = begin; j < end; j += 16) {
+        const uint32_t left = end - j;
+        const __mmask16 live = left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1);
+        const __m512 dx = _mm512_sub_ps(px, _mm512_maskz_loadu_ps(live, s.x + j));
+        const __m512 dy = _mm512_sub_ps(py, _mm512_maskz_loadu_ps(live, s.y + j));
+        const __m512 dz = _mm512_sub_ps(pz, _mm512_maskz_loadu_ps(live, s.z + j));
+        const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
+        const __m512 sum = _mm512_add_ps(pr, _mm512_maskz_loadu_ps(live, s.radius + j));
+        const __m512 limit = _mm512_mul_ps(_mm512_mul_ps(sum, sum), reach2v);
+        const __mmask16 near = _mm512_mask_cmp_ps_mask(live, d2, limit, _CMP_LT_OQ) &
+                               _mm512_cmp_ps_mask(d2, zero, _CMP_GT_OQ);
+        if (!near) continue;
+        const auto keep = [&](float* to, __m512 v) {
+            _mm512_storeu_ps(to + count, _mm512_maskz_compress_ps(near, v));
+        };
+        keep(bx, dx);
+        keep(by, dy);
+        keep(bz, dz);
+        keep(bvx, _mm512_sub_ps(pvx, _mm512_maskz_loadu_ps(near, s.vx + j)));
+        keep(bvy, _mm512_sub_ps(pvy, _mm512_maskz_loadu_ps(near, s.vy + j)));
+        keep(bvz, _mm512_sub_ps(pvz, _mm512_maskz_loadu_ps(near, s.vz + j)));
+        keep(bsum, sum);
+        count += uint32_t(__builtin_popcount(near));
+    }
+#else
+    for (uint32_t j = begin; j < end; ++j) {
+        const float dx = x - s.x[j], dy = y - s.y[j], dz = z - s.z[j];
+        const float d2 = dx * dx + dy * dy + dz * dz;
+        const float sum = r + s.radius[j];
+        if (!(d2 < sum * sum * reach2) || !(d2 > 0)) continue;
+        bx[count] = dx;
+        by[count] = dy;
+        bz[count] = dz;
+        bvx[count] = vx - s.vx[j];
+        bvy[count] = vy - s.vy[j];
+        bvz[count] = vz - s.vz[j];
+        bsum[count] = sum;
+        ++count;
+    }
+#endif
+    out.count = count;
+}
 
 /// b1/D^M - b2/D^N with integer exponents known at compile time (0 = use pow()).
 template <int M, int N>
@@ -30,29 +111,68 @@ inline float radialTerm(const PairForce& p, float invD, float distance) {
     }
 }
 
-/// Adds to (fx, fy, fz) the force on the globule at (x, y, z) with velocity (vx, vy, vz)
-/// and radius r from the sorted globules [begin, end).
+/// Adds to (fx, fy, fz) the force of eq. (2) from every neighbour in @p batch.
 template <int M, int N>
-inline void accumulateRun(const PairForce& p, const SortedGlobules& s, uint32_t begin,
-                          uint32_t end, float x, float y, float z, float vx, float vy, float vz,
-                          float r, float& fx, float& fy, float& fz) {
-    const float* __restrict sx = s.x.data();
-    const float* __restrict sy = s.y.data();
-    const float* __restrict sz = s.z.data();
-    const float* __restrict svx = s.vx.data();
-    const float* __restrict svy = s.vy.data();
-    const float* __restrict svz = s.vz.data();
-    const float* __restrict sr = s.radius.data();
+inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, float& fy,
+                     float& fz) {
     const float invCr2 = 1.0f / (p.cr * p.cr), invCd2 = 1.0f / (p.cd * p.cd);
     const float minFraction2 = kMinDistanceFraction * kMinDistanceFraction;
-    float ax = 0, ay = 0, az = 0;
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC ivdep
+    const float *bx = batch.dx.data(), *by = batch.dy.data(), *bz = batch.dz.data();
+    const float *bvx = batch.dvx.data(), *bvy = batch.dvy.data(), *bvz = batch.dvz.data();
+    const float* bsum = batch.radiusSum.data();
+    const uint32_t count = batch.count;
+#if defined(__AVX512F__)
+    if constexpr (M > 0 && N > 0) {
+        const __m512 one = _mm512_set1_ps(1), zero = _mm512_setzero_ps();
+        const __m512 half = _mm512_set1_ps(0.5f), threeHalves = _mm512_set1_ps(1.5f),
+                     two = _mm512_set1_ps(2);
+        const __m512 cr2 = _mm512_set1_ps(invCr2), cd2 = _mm512_set1_ps(invCd2);
+        const __m512 b1 = _mm512_set1_ps(p.b1), b2 = _mm512_set1_ps(p.b2);
+        const __m512 minF2 = _mm512_set1_ps(minFraction2);
+        __m512 ax = zero, ay = zero, az = zero;
+        for (uint32_t k = 0; k < count; k += 16) {
+            const uint32_t left = count - k;
+            const __mmask16 live = left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1);
+            const __m512 dx = _mm512_maskz_loadu_ps(live, bx + k);
+            const __m512 dy = _mm512_maskz_loadu_ps(live, by + k);
+            const __m512 dz = _mm512_maskz_loadu_ps(live, bz + k);
+            const __m512 sum = _mm512_mask_loadu_ps(one, live, bsum + k);
+            const __m512 sum2 = _mm512_mul_ps(sum, sum);
+            __m512 invSum2 = _mm512_rcp14_ps(sum2);  // one Newton step: ~full precision
+            invSum2 = _mm512_mul_ps(invSum2, _mm512_fnmadd_ps(sum2, invSum2, two));
+            const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
+            const __m512 safeD2 = _mm512_max_ps(d2, _mm512_mul_ps(minF2, sum2));
+            __m512 invD = _mm512_rsqrt14_ps(safeD2);
+            invD = _mm512_mul_ps(invD, _mm512_fnmadd_ps(_mm512_mul_ps(half, safeD2),
+                                                        _mm512_mul_ps(invD, invD), threeHalves));
+            const __m512 relative = _mm512_mul_ps(d2, invSum2);
+            const __m512 windowR = _mm512_max_ps(zero, _mm512_fnmadd_ps(relative, cr2, one));
+            const __m512 windowD = _mm512_max_ps(zero, _mm512_fnmadd_ps(relative, cd2, one));
+            __m512 powM = invD, powN = invD;
+            for (int e = 1; e < M; ++e) powM = _mm512_mul_ps(powM, invD);
+            for (int e = 1; e < N; ++e) powN = _mm512_mul_ps(powN, invD);
+            const __m512 radial = _mm512_fmsub_ps(b1, powM, _mm512_mul_ps(b2, powN));
+            const __m512 vDotP = _mm512_fmadd_ps(
+                _mm512_maskz_loadu_ps(live, bvz + k), dz,
+                _mm512_fmadd_ps(_mm512_maskz_loadu_ps(live, bvy + k), dy,
+                                _mm512_mul_ps(_mm512_maskz_loadu_ps(live, bvx + k), dx)));
+            const __m512 drag = _mm512_mul_ps(_mm512_mul_ps(windowD, vDotP),
+                                              _mm512_mul_ps(invD, invD));
+            const __m512 scale = _mm512_fmsub_ps(windowR, radial, drag);
+            ax = _mm512_mask3_fmadd_ps(scale, dx, ax, live);
+            ay = _mm512_mask3_fmadd_ps(scale, dy, ay, live);
+            az = _mm512_mask3_fmadd_ps(scale, dz, az, live);
+        }
+        fx += _mm512_reduce_add_ps(ax);
+        fy += _mm512_reduce_add_ps(ay);
+        fz += _mm512_reduce_add_ps(az);
+        return;
+    }
 #endif
-    for (uint32_t j = begin; j < end; ++j) {
-        const float dx = x - sx[j], dy = y - sy[j], dz = z - sz[j];
-        const float dvx = vx - svx[j], dvy = vy - svy[j], dvz = vz - svz[j];
-        const float sum = r + sr[j];
+    float ax = 0, ay = 0, az = 0;
+    for (uint32_t k = 0; k < count; ++k) {
+        const float dx = bx[k], dy = by[k], dz = bz[k];
+        const float sum = bsum[k];
         const float invSum2 = 1.0f / (sum * sum);
         const float d2 = dx * dx + dy * dy + dz * dz;
         const float safeD2 = std::max(d2, minFraction2 * sum * sum);
@@ -60,9 +180,9 @@ inline void accumulateRun(const PairForce& p, const SortedGlobules& s, uint32_t 
         const float invD = 1.0f / distance;
         const float windowR = std::max(0.0f, 1.0f - d2 * invSum2 * invCr2);
         const float windowD = std::max(0.0f, 1.0f - d2 * invSum2 * invCd2);
-        const float vDotP = dvx * dx + dvy * dy + dvz * dz;
-        const float scale = windowR * radialTerm<M, N>(p, invD, distance) -
-                            windowD * vDotP * (invD * invD);
+        const float vDotP = bvx[k] * dx + bvy[k] * dy + bvz[k] * dz;
+        const float scale =
+            windowR * radialTerm<M, N>(p, invD, distance) - windowD * vDotP * (invD * invD);
         ax += scale * dx;
         ay += scale * dy;
         az += scale * dz;
