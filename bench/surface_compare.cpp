@@ -1,10 +1,11 @@
 // Helper of bench/surface_vs_vdb_tool.sh: writes the benchmark particles for vdb_tool and
 // times globular's pipeline on the same particles.
 //   globular_surface_compare points COUNT FILE.ply   x y z of bench_puddle(COUNT)
-//   globular_surface_compare time COUNT VOXEL OUT.ply [THREADS]
+//   globular_surface_compare time COUNT VOXEL OUT.ply [THREADS [rebuild]]
 //       splat + level set + mesh + PLY write, the steps vdb_tool's
 //       -points2ls -ls2mesh -write do; prints one line per step (wall seconds), the
-//       process CPU seconds ("cpu") and "total SECONDS" (wall).
+//       process CPU seconds ("cpu") and "total SECONDS" (wall). With "rebuild", the level
+//       set comes from levelSetRebuild (the old path) instead of fieldToLevelSet.
 //   globular_surface_compare estimate COUNT VOXEL
 //       surfaces the whole frame and prints the stage's memory estimate beside it.
 #include <tbb/info.h>
@@ -42,7 +43,7 @@ int writePoints(std::size_t count, const std::string& path) {
     return out ? 0 : 1;
 }
 
-int timePipeline(std::size_t count, double voxelSize, const std::string& meshPath) {
+int timePipeline(std::size_t count, double voxelSize, const std::string& meshPath, bool rebuild) {
     const std::clock_t cpuStart = std::clock();
     const Globules g = benchPuddle(count);
     SurfaceSettings s;
@@ -54,8 +55,9 @@ int timePipeline(std::size_t count, double voxelSize, const std::string& meshPat
     const auto field = splatMetaballs(g, s.metaballKernel(), s.influence, voxelSize);
     const double splat = seconds(t);
     t = std::chrono::steady_clock::now();
-    const auto levelSet = fieldToLevelSet(*field, s.isoValue, s.bandWidth);
-    const double rebuild = seconds(t);
+    const auto levelSet = rebuild ? rebuildLevelSet(*field, s.isoValue, s.bandWidth)
+                                  : fieldToLevelSet(*field, s.isoValue, s.bandWidth);
+    const double levelSetTime = seconds(t);
     t = std::chrono::steady_clock::now();
     const TriangleMesh mesh = meshLevelSet(*levelSet, s.adaptivity);
     const double meshing = seconds(t);
@@ -67,7 +69,7 @@ int timePipeline(std::size_t count, double voxelSize, const std::string& meshPat
     std::printf(
         "splat %.3f\nlevelset %.3f\nmesh %.3f\nwrite %.3f\ntriangles %zu\ncpu %.3f\n"
         "total %.3f\n",
-        splat, rebuild, meshing, write, mesh.triangleCount(), cpu, total);
+        splat, levelSetTime, meshing, write, mesh.triangleCount(), cpu, total);
     return 0;
 }
 
@@ -93,16 +95,19 @@ int main(int argc, char** argv) {
     if (mode == "points" && argc == 4) return writePoints(std::stoul(argv[2]), argv[3]);
     if (mode == "estimate" && argc == 4)
         return estimateFrame(std::stoul(argv[2]), std::stod(argv[3]));
-    if (mode == "time" && (argc == 5 || argc == 6)) {
-        // An optional thread count, to compare with vdb_tool on equal terms.
-        const int threads = argc == 6 ? std::stoi(argv[5]) : tbb::info::default_concurrency();
+    if (mode == "time" && argc >= 5 && argc <= 7 && (argc < 7 || std::string(argv[6]) == "rebuild")) {
+        // An optional thread count (0 = all), to compare with vdb_tool on equal terms.
+        const int threads = argc >= 6 && std::stoi(argv[5]) > 0 ? std::stoi(argv[5])
+                                                                : tbb::info::default_concurrency();
+        const bool rebuild = argc == 7;
         int rc = 0;
-        tbb::task_arena(threads).execute(
-            [&] { rc = timePipeline(std::stoul(argv[2]), std::stod(argv[3]), argv[4]); });
+        tbb::task_arena(threads).execute([&] {
+            rc = timePipeline(std::stoul(argv[2]), std::stod(argv[3]), argv[4], rebuild);
+        });
         return rc;
     }
     std::fprintf(stderr,
-                 "usage: %s points COUNT FILE.ply\n       %s time COUNT VOXEL OUT.ply [THREADS]\n",
+                 "usage: %s points COUNT FILE.ply\n       %s time COUNT VOXEL OUT.ply [THREADS [rebuild]]\n",
                  argv[0], argv[0]);
     return 2;
 }

@@ -1,5 +1,5 @@
-// Level-set steps of surfacing: rebuild from the metaball field, filters, droplet removal
-// and the fog volume. The heaviest OpenVDB templates live here, in one translation unit.
+// Level-set steps of surfacing: the levelSetRebuild reference path, filters, droplet
+// removal and the fog volume. The heaviest OpenVDB templates live here, in one translation unit.
 #include <openvdb/tools/Composite.h>
 #include <openvdb/tools/LevelSetFilter.h>
 #include <openvdb/tools/LevelSetMeasure.h>
@@ -12,7 +12,7 @@ namespace globular {
 
 using openvdb::FloatGrid;
 
-FloatGrid::Ptr fieldToLevelSet(const FloatGrid& field, double isoValue, double bandWidth) {
+FloatGrid::Ptr rebuildLevelSet(const FloatGrid& field, double isoValue, double bandWidth) {
     // levelSetRebuild meshes the iso surface and re-voxelises it with signs from a flood
     // fill of the exterior, so it works on a density-like field (larger inside) as well as
     // on a distance field.

@@ -18,6 +18,7 @@ namespace globular {
 namespace {
 
 namespace fs = std::filesystem;
+using openvdb::Coord;
 
 Globules someGlobules(int count, unsigned seed) {
     std::mt19937 rng(seed);
@@ -94,6 +95,77 @@ TEST(MetaballSplat, FieldIsTheKernelSumOverExactlyTheInfluenceSpheres) {
     SurfaceSettings s;
     s.voxelSize = h;
     EXPECT_GE(estimateSurface(g, s).fieldLeaves, field->tree().leafCount());
+}
+
+TEST(FieldToLevelSet, LoneGlobuleGivesItsDistanceWithinTheBand) {
+    openvdb::initialize();
+    const double h = 0.1, band = 3;
+    Globules g;
+    g.add({0.013, -0.021, 0.037}, {0, 0, 0}, 1.0f, 1, 0);  // off the voxel lattice
+    const auto field = splatMetaballs(g, MetaballKernel{KernelType::Wyvill}, 2.0, h);
+    const auto levelSet = fieldToLevelSet(*field, 0.5, band);
+    EXPECT_EQ(levelSet->getGridClass(), openvdb::GRID_LEVEL_SET);
+    EXPECT_FLOAT_EQ(levelSet->background(), float(band * h));
+    // Every active voxel lies within the band and holds its distance to the sphere of
+    // radius 1 (Wyvill at iso 0.5, influence 2), to a fraction of a voxel; every voxel
+    // nearer than the band's width is active.
+    const openvdb::Vec3d centre(0.013, -0.021, 0.037);
+    double worst = 0;
+    std::size_t missing = 0;
+    for (auto it = levelSet->cbeginValueOn(); it; ++it) {
+        const double exact = (levelSet->indexToWorld(it.getCoord()) - centre).length() - 1.0;
+        worst = std::max(worst, std::abs(*it - exact) / h);
+        EXPECT_LT(std::abs(*it), band * h);
+    }
+    EXPECT_LT(worst, 0.25) << "voxels";
+    auto acc = levelSet->getConstAccessor();
+    for (int x = -16; x <= 16; ++x) {
+        for (int y = -16; y <= 16; ++y) {
+            for (int z = -16; z <= 16; ++z) {
+                const Coord ijk(x, y, z);
+                const double exact = (levelSet->indexToWorld(ijk) - centre).length() - 1.0;
+                if (std::abs(exact) < (band - 0.2) * h && !acc.isValueOn(ijk)) ++missing;
+                // Inactive voxels and tiles carry the sign: negative inside.
+                if (std::abs(exact) > 0.2 * h) EXPECT_EQ(acc.getValue(ijk) < 0, exact < 0);
+            }
+        }
+    }
+    EXPECT_EQ(missing, 0u);
+}
+
+TEST(FieldToLevelSet, AgreesWithLevelSetRebuildWithinAVoxel) {
+    openvdb::initialize();
+    const double h = 0.1;
+    const Globules g = someGlobules(40, 7);
+    const auto field = splatMetaballs(g, MetaballKernel{KernelType::Wyvill}, 2.0, h);
+    const auto direct = fieldToLevelSet(*field, 0.5, 3.0);
+    const auto rebuilt = rebuildLevelSet(*field, 0.5, 3.0);
+    EXPECT_EQ(direct->background(), rebuilt->background());
+    auto acc = direct->getConstAccessor();
+    double worst = 0, sum = 0;
+    std::size_t compared = 0, signs = 0;
+    for (auto it = rebuilt->cbeginValueOn(); it; ++it) {
+        const float d = acc.getValue(it.getCoord());
+        worst = std::max(worst, double(std::abs(d - *it)) / h);
+        sum += std::abs(d - *it) / h;
+        ++compared;
+        if (std::abs(*it) > 0.5 * h && (d < 0) != (*it < 0)) ++signs;
+    }
+    ASSERT_GT(compared, 1000u);
+    EXPECT_LT(worst, 1.0) << "voxels";
+    EXPECT_LT(sum / double(compared), 0.05) << "voxels, mean";
+    EXPECT_EQ(signs, 0u);
+    // The same voxels are active, but for voxels right at the band's edge.
+    const double ratio = double(direct->activeVoxelCount()) / double(rebuilt->activeVoxelCount());
+    EXPECT_NEAR(ratio, 1.0, 0.05);
+}
+
+TEST(FieldToLevelSet, EmptyFieldGivesAnEmptyLevelSet) {
+    openvdb::initialize();
+    const auto field = splatMetaballs(Globules{}, MetaballKernel{}, 2.0, 0.1);
+    const auto levelSet = fieldToLevelSet(*field, 0.5, 3.0);
+    EXPECT_EQ(levelSet->activeVoxelCount(), 0u);
+    EXPECT_GT(levelSet->getConstAccessor().getValue({0, 0, 0}), 0.0f);
 }
 
 TEST(SurfaceVdb, FileHoldsTheDocumentedGrids) {
