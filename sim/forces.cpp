@@ -59,64 +59,43 @@ void buildGrid(const Globules& g, const PairForce& pair, NeighborGrid& grid) {
 
 namespace {
 
-void gatherSorted(const Globules& g, const std::vector<uint32_t>& order, SortedGlobules& s) {
-    const std::size_t n = g.size();
-    for (auto* a : {&s.x, &s.y, &s.z, &s.vx, &s.vy, &s.vz, &s.radius}) a->resize(n);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t k = r.begin(); k != r.end(); ++k) {
-                              const uint32_t i = order[k];
-                              s.x[k] = g.px[i];
-                              s.y[k] = g.py[i];
-                              s.z[k] = g.pz[i];
-                              s.vx[k] = g.vx[i];
-                              s.vy[k] = g.vy[i];
-                              s.vz[k] = g.vz[i];
-                              s.radius[k] = g.radius[i];
-                          }
-                      });
-}
-
-/// Sums forces for sorted positions [begin, end), writing each to its globule's index.
+/// Sums forces on the globules [begin, end) of @p s, which are in grid order.
 template <int M, int N>
-void sumRange(const PairForce& pair, const NeighborWorkspace& w,
-              const std::vector<uint32_t>& order, std::size_t begin, std::size_t end,
-              Accelerations& forces) {
-    const SortedGlobules& s = w.sorted;
-    const GlobuleArrays arrays{s.x.data(),  s.y.data(),  s.z.data(),     s.vx.data(),
+void sumRange(const PairForce& pair, const NeighborGrid& grid, const Globules& s,
+              std::size_t begin, std::size_t end, Accelerations& forces) {
+    const GlobuleArrays arrays{s.px.data(), s.py.data(), s.pz.data(),    s.vx.data(),
                                s.vy.data(), s.vz.data(), s.radius.data()};
     const float reach = pair.cutoff(1.0f), reach2 = reach * reach;
     std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> runs;
-    std::array<int64_t, 3> cell{INT64_MIN, 0, 0};
+    std::array<int32_t, 3> cell{INT32_MIN, 0, 0};
     int runCount = 0;
     NeighborBatch batch;
     for (std::size_t k = begin; k < end; ++k) {
         // Consecutive globules mostly share a cell: reuse its neighbour runs.
-        const auto here = w.grid.cellOf(s.x[k], s.y[k], s.z[k]);
+        const auto here = grid.cellOf(s.px[k], s.py[k], s.pz[k]);
         if (here != cell) {
             cell = here;
-            runCount = w.grid.neighborRuns(s.x[k], s.y[k], s.z[k], runs);
+            runCount = grid.neighborRuns(s.px[k], s.py[k], s.pz[k], runs);
             std::size_t candidates = 0;
             for (int b = 0; b < runCount; ++b) candidates += runs[b].second - runs[b].first;
             batch.reserve(candidates);
         }
         batch.count = 0;
         for (int b = 0; b < runCount; ++b) {
-            collectNeighbors(arrays, runs[b].first, runs[b].second, s.x[k], s.y[k], s.z[k],
-                             s.vx[k], s.vy[k], s.vz[k], s.radius[k], reach2, batch);
+            collectNeighbors(arrays, runs[b].first, runs[b].second, s.px[k], s.py[k], s.pz[k],
+                             s.radius[k], reach2, batch);
         }
         float fx = 0, fy = 0, fz = 0;
-        sumBatch<M, N>(pair, batch, fx, fy, fz);
-        const uint32_t i = order[k];
-        forces.x[i] = fx;
-        forces.y[i] = fy;
-        forces.z[i] = fz;
+        sumBatch<M, N>(pair, arrays, batch, s.px[k], s.py[k], s.pz[k], s.vx[k], s.vy[k],
+                       s.vz[k], s.radius[k], fx, fy, fz);
+        forces.x[k] = fx;
+        forces.y[k] = fy;
+        forces.z[k] = fz;
     }
 }
 
-using SumRange = void (*)(const PairForce&, const NeighborWorkspace&,
-                          const std::vector<uint32_t>&, std::size_t, std::size_t,
-                          Accelerations&);
+using SumRange = void (*)(const PairForce&, const NeighborGrid&, const Globules&, std::size_t,
+                          std::size_t, Accelerations&);
 
 /// The kernel for the material's exponents: unrolled powers for the pairs the paper
 /// uses, pow() otherwise.
@@ -135,19 +114,32 @@ SumRange kernelFor(const PairForce& pair) {
 
 }  // namespace
 
-void pairForcesGrid(const Globules& g, const PairForce& pair, NeighborWorkspace& w,
-                    Accelerations& forces) {
+void pairForcesSorting(Globules& g, const PairForce& pair, NeighborWorkspace& w,
+                       Accelerations& forces) {
     const std::size_t n = g.size();
     forces.resize(n);
     if (n == 0) return;
     buildGrid(g, pair, w.grid);
-    const std::vector<uint32_t>& order = w.grid.sortedOrder();
-    gatherSorted(g, order, w.sorted);
+    g.permute(w.grid.sortedOrder(), w.scratch);
     const SumRange sum = kernelFor(pair);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
                       [&](const tbb::blocked_range<std::size_t>& r) {
-                          sum(pair, w, order, r.begin(), r.end(), forces);
+                          sum(pair, w.grid, g, r.begin(), r.end(), forces);
                       });
+}
+
+void pairForcesGrid(const Globules& g, const PairForce& pair, NeighborWorkspace& w,
+                    Accelerations& forces) {
+    Globules sorted = g;
+    Accelerations sortedForces;
+    pairForcesSorting(sorted, pair, w, sortedForces);
+    const std::vector<uint32_t>& order = w.grid.sortedOrder();
+    forces.resize(g.size());
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        forces.x[order[k]] = sortedForces.x[k];
+        forces.y[order[k]] = sortedForces.y[k];
+        forces.z[order[k]] = sortedForces.z[k];
+    }
 }
 
 float groundForce(const GroundSettings& ground, float y, float vy, float radius) {
@@ -157,16 +149,11 @@ float groundForce(const GroundSettings& ground, float y, float vy, float radius)
     return -float(ground.ks) * depth - float(ground.kd) * vy;
 }
 
-const std::vector<uint32_t>& ForceField::gridOrder(const Globules& globules) {
-    buildGrid(globules, mPair, mWorkspace.grid);
-    return mWorkspace.grid.sortedOrder();
-}
-
-void ForceField::compute(const Globules& g, Accelerations& out) {
+void ForceField::compute(Globules& g, Accelerations& out) {
     if (mAllPairs) {
         pairForcesAllPairs(g, mPair, out);
     } else {
-        pairForcesGrid(g, mPair, mWorkspace, out);
+        pairForcesSorting(g, mPair, mWorkspace, out);
     }
     const float gx = float(mExternal.gravity.x), gy = float(mExternal.gravity.y),
                 gz = float(mExternal.gravity.z);

@@ -3,6 +3,8 @@
 // plus gravity and the ground penalty of eq. (9). Forces are gathered per globule (each
 // pair is evaluated from both sides) so loops write only their own index: no locks, no
 // atomics, and the same sum order, hence bit-identical results, for any thread count.
+// The globules themselves are kept in neighbour-grid order (re-sorted every step) rather
+// than copied into it: no second copy of the state (issue 7's memory budget).
 
 #include <vector>
 
@@ -31,19 +33,21 @@ struct ExternalForces {
 /// Sum of pair forces on each globule over all others: the paper's O(N^2) reference.
 void pairForcesAllPairs(const Globules& globules, const PairForce& pair, Accelerations& forces);
 
-/// Globule data in neighbour-grid order: contiguous runs per grid bucket.
-struct SortedGlobules {
-    std::vector<float> x, y, z, vx, vy, vz, radius;
-};
-
-/// The neighbour grid and the globules copied into its order, reused between steps.
+/// What the grid force loop keeps between steps.
 struct NeighborWorkspace {
     NeighborGrid grid;
-    SortedGlobules sorted;
+    std::vector<float> scratch;  ///< reused by Globules::permute
 };
 
-/// The same sums over cell-list neighbours only; the workspace is rebuilt from the
-/// positions. Candidates are read from contiguous grid-ordered copies.
+/// The same sums over cell-list neighbours only. Sorts @p globules into neighbour-grid
+/// order first (every array, in place; the order depends only on the positions), so
+/// that a globule's neighbours lie in a few contiguous runs; @p forces come out in the
+/// new order.
+void pairForcesSorting(Globules& globules, const PairForce& pair, NeighborWorkspace& workspace,
+                       Accelerations& forces);
+
+/// pairForcesSorting for globules that must keep their order (tests, tools): works on a
+/// sorted copy; @p forces are in the order of @p globules.
 void pairForcesGrid(const Globules& globules, const PairForce& pair,
                     NeighborWorkspace& workspace, Accelerations& forces);
 
@@ -59,10 +63,9 @@ public:
     ForceField(PairForce pair, ExternalForces external, bool allPairs = false)
         : mPair(pair), mExternal(external), mAllPairs(allPairs) {}
 
-    void compute(const Globules& globules, Accelerations& out);
-
-    /// Rebuilds the neighbour grid for @p globules; @return their indices in grid order.
-    const std::vector<uint32_t>& gridOrder(const Globules& globules);
+    /// Fills @p out for @p globules, which the grid method reorders first (see
+    /// pairForcesSorting); @p out is in their new order.
+    void compute(Globules& globules, Accelerations& out);
 
     const PairForce& pair() const { return mPair; }
 private:

@@ -1,14 +1,31 @@
 #include "globules.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <bit>
+
 namespace globular {
 
 namespace {
-template <typename T>
-void permuteArray(std::vector<T>& values, const std::vector<uint32_t>& order) {
-    std::vector<T> out(values.size());
-    for (std::size_t k = 0; k < order.size(); ++k) out[k] = values[order[k]];
-    values.swap(out);
+
+/// Calls body(k) for k in [0, n), in parallel.
+template <typename Body>
+void forEachIndex(std::size_t n, Body&& body) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t k = r.begin(); k != r.end(); ++k) body(k);
+                      });
 }
+
+/// values[k] = old values[order[k]]; @p scratch takes the old buffer.
+void permuteArray(std::vector<float>& values, const std::vector<uint32_t>& order,
+                  std::vector<float>& scratch) {
+    scratch.resize(values.size());
+    forEachIndex(order.size(), [&](std::size_t k) { scratch[k] = values[order[k]]; });
+    values.swap(scratch);
+}
+
 }  // namespace
 
 bool Globules::consistent() const {
@@ -42,9 +59,17 @@ std::size_t Globules::add(Vec3 p, Vec3 v, float r, float m, int32_t globuleId) {
     return size() - 1;
 }
 
+void Globules::permute(const std::vector<uint32_t>& order, std::vector<float>& scratch) {
+    for (auto* a : {&px, &py, &pz, &vx, &vy, &vz, &radius, &mass}) permuteArray(*a, order, scratch);
+    // The ids travel through the same float scratch, bit for bit.
+    scratch.resize(id.size());
+    forEachIndex(order.size(), [&](std::size_t k) { scratch[k] = std::bit_cast<float>(id[order[k]]); });
+    forEachIndex(order.size(), [&](std::size_t k) { id[k] = std::bit_cast<int32_t>(scratch[k]); });
+}
+
 void Globules::permute(const std::vector<uint32_t>& order) {
-    for (auto* a : {&px, &py, &pz, &vx, &vy, &vz, &radius, &mass}) permuteArray(*a, order);
-    permuteArray(id, order);
+    std::vector<float> scratch;
+    permute(order, scratch);
 }
 
 }  // namespace globular

@@ -33,6 +33,9 @@ struct Globules {
 
     /// Reorders every array so that new index k holds old index order[k].
     void permute(const std::vector<uint32_t>& order);
+    /// The same, reusing @p scratch (any contents) instead of allocating: the force loop
+    /// reorders the globules every step.
+    void permute(const std::vector<uint32_t>& order, std::vector<float>& scratch);
 };
 
 }  // namespace globular

@@ -11,8 +11,10 @@
 
 namespace globular {
 
-/// Fills accelerations for the globules' current positions and velocities.
-using AccelerationFunction = std::function<void(const Globules&, Accelerations&)>;
+/// Fills accelerations for the globules' current positions and velocities. It may
+/// reorder the globules (ForceField sorts them into neighbour-grid order); the
+/// accelerations are then in the new order.
+using AccelerationFunction = std::function<void(Globules&, Accelerations&)>;
 
 class Integrator {
 public:

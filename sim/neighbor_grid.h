@@ -1,6 +1,6 @@
 #pragma once
 // Uniform-grid neighbour search (cell lists) over an unbounded domain. Rows of cells
-// (fixed y and z) are hashed into a table about twice the point count; points are
+// (fixed y and z) are hashed into a table of 1-2 buckets per point; points are
 // counting-sorted by row bucket and, within a bucket, by x cell. The three x-adjacent
 // cells of a row are then one contiguous run, so a query is at most 9 runs — long,
 // contiguous loops for the vectorised force kernel — and a rebuild is O(N) (plus small
@@ -10,6 +10,7 @@
 // windows are zero beyond the cutoff, so they reject them for free).
 // \see Hoetzlein, "Fast Fixed-Radius Nearest Neighbors", GTC 2014 (counting-sort grid).
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -48,7 +49,7 @@ public:
     }
 
     /// Integer coordinates of the cell holding (x, y, z).
-    std::array<int64_t, 3> cellOf(float x, float y, float z) const {
+    std::array<int32_t, 3> cellOf(float x, float y, float z) const {
         return {cellCoordX(x), cellCoord(y), cellCoord(z)};
     }
     float cellSize() const { return mCellSize; }
@@ -56,21 +57,24 @@ public:
     const std::vector<uint32_t>& sortedOrder() const { return mSorted; }
 
 private:
-    uint32_t rowBucket(int64_t cy, int64_t cz) const;
-    /// Cell coordinate; non-finite or absurd values map to cell 0 (the simulation stops
-    /// on non-finite state anyway, but the grid must not invoke undefined behaviour).
-    int64_t cellCoord(float v) const { return toCell(v * mInvCellSize); }
-    int64_t cellCoordX(float v) const { return toCell(v * (mInvCellSize * kXSplit)); }
-    static int64_t toCell(float scaled) {
+    uint32_t rowBucket(int32_t cy, int32_t cz) const;
+    /// Cell coordinate; non-finite values map to cell 0 and absurd ones (beyond 2^30
+    /// cells, ~1e9 world units) to the last cell (the simulation stops on non-finite or
+    /// runaway state anyway, but the grid must not invoke undefined behaviour).
+    int32_t cellCoord(float v) const { return toCell(v * mInvCellSize); }
+    int32_t cellCoordX(float v) const { return toCell(v * (mInvCellSize * kXSplit)); }
+    static int32_t toCell(float scaled) {
+        constexpr float kLimit = 1 << 30;
         const float c = std::floor(scaled);
-        return c > -4e18f && c < 4e18f ? int64_t(c) : 0;
+        if (!(c == c)) return 0;
+        return int32_t(std::clamp(c, -kLimit, kLimit));
     }
 
     float mCellSize = 1, mInvCellSize = 1;
     uint32_t mMask = 0;
     std::vector<uint32_t> mBucketStart;  ///< size buckets + 1
     std::vector<uint32_t> mSorted;       ///< point indices grouped by bucket, then x cell
-    std::vector<int64_t> mSortedCellX;   ///< x sub-cell (cellCoordX) of each sorted point
+    std::vector<int32_t> mSortedCellX;   ///< x sub-cell (cellCoordX) of each sorted point
 };
 
 }  // namespace globular

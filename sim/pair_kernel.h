@@ -26,17 +26,15 @@ struct GlobuleArrays {
     const float *x, *y, *z, *vx, *vy, *vz, *radius;
 };
 
-/// One globule's neighbours within reach: P = x_i - x_j, V = v_i - v_j and r_i + r_j.
+/// One globule's neighbours within reach, as indices into the GlobuleArrays.
 struct NeighborBatch {
     static constexpr uint32_t kPadding = 16;  ///< vector stores write up to 16 past count
-    std::vector<float> dx, dy, dz, dvx, dvy, dvz, radiusSum;
+    std::vector<int32_t> index;
     uint32_t count = 0;
 
     /// Room for @p candidates entries.
     void reserve(std::size_t candidates) {
-        for (auto* a : {&dx, &dy, &dz, &dvx, &dvy, &dvz, &radiusSum}) {
-            if (a->size() < candidates + kPadding) a->resize(candidates + kPadding);
-        }
+        if (index.size() < candidates + kPadding) index.resize(candidates + kPadding);
     }
 };
 
@@ -44,17 +42,14 @@ struct NeighborBatch {
 /// reach (r_i + r_j), reach = PairForce::cutoff(1). Globule i itself (and any globule at
 /// exactly its position, whose force is zero) is left out. @p out has room for them.
 inline void collectNeighbors(const GlobuleArrays& s, uint32_t begin, uint32_t end, float x,
-                             float y, float z, float vx, float vy, float vz, float r,
-                             float reach2, NeighborBatch& out) {
+                             float y, float z, float r, float reach2, NeighborBatch& out) {
     uint32_t count = out.count;
-    float *bx = out.dx.data(), *by = out.dy.data(), *bz = out.dz.data();
-    float *bvx = out.dvx.data(), *bvy = out.dvy.data(), *bvz = out.dvz.data();
-    float* bsum = out.radiusSum.data();
+    int32_t* to = out.index.data();
 #if defined(__AVX512F__)
     const __m512 px = _mm512_set1_ps(x), py = _mm512_set1_ps(y), pz = _mm512_set1_ps(z);
-    const __m512 pvx = _mm512_set1_ps(vx), pvy = _mm512_set1_ps(vy), pvz = _mm512_set1_ps(vz);
     const __m512 pr = _mm512_set1_ps(r), reach2v = _mm512_set1_ps(reach2);
     const __m512 zero = _mm512_setzero_ps();
+    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
     for (uint32_t j = begin; j < end; j += 16) {
         const uint32_t left = end - j;
         const __mmask16 live = left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1);
@@ -66,17 +61,9 @@ inline void collectNeighbors(const GlobuleArrays& s, uint32_t begin, uint32_t en
         const __m512 limit = _mm512_mul_ps(_mm512_mul_ps(sum, sum), reach2v);
         const __mmask16 near = _mm512_mask_cmp_ps_mask(live, d2, limit, _CMP_LT_OQ) &
                                _mm512_cmp_ps_mask(d2, zero, _CMP_GT_OQ);
-        if (!near) continue;
-        const auto keep = [&](float* to, __m512 v) {
-            _mm512_storeu_ps(to + count, _mm512_maskz_compress_ps(near, v));
-        };
-        keep(bx, dx);
-        keep(by, dy);
-        keep(bz, dz);
-        keep(bvx, _mm512_sub_ps(pvx, _mm512_maskz_loadu_ps(near, s.vx + j)));
-        keep(bvy, _mm512_sub_ps(pvy, _mm512_maskz_loadu_ps(near, s.vy + j)));
-        keep(bvz, _mm512_sub_ps(pvz, _mm512_maskz_loadu_ps(near, s.vz + j)));
-        keep(bsum, sum);
+        // No early-out when no lane is near: that branch is unpredictable, and slower.
+        const __m512i index = _mm512_add_epi32(_mm512_set1_epi32(int32_t(j)), lane);
+        _mm512_storeu_si512(to + count, _mm512_maskz_compress_epi32(near, index));
         count += uint32_t(__builtin_popcount(near));
     }
 #else
@@ -84,15 +71,8 @@ inline void collectNeighbors(const GlobuleArrays& s, uint32_t begin, uint32_t en
         const float dx = x - s.x[j], dy = y - s.y[j], dz = z - s.z[j];
         const float d2 = dx * dx + dy * dy + dz * dz;
         const float sum = r + s.radius[j];
-        if (!(d2 < sum * sum * reach2) || !(d2 > 0)) continue;
-        bx[count] = dx;
-        by[count] = dy;
-        bz[count] = dz;
-        bvx[count] = vx - s.vx[j];
-        bvy[count] = vy - s.vy[j];
-        bvz[count] = vz - s.vz[j];
-        bsum[count] = sum;
-        ++count;
+        to[count] = int32_t(j);
+        count += d2 < sum * sum * reach2 && d2 > 0;
     }
 #endif
     out.count = count;
@@ -111,15 +91,15 @@ inline float radialTerm(const PairForce& p, float invD, float distance) {
     }
 }
 
-/// Adds to (fx, fy, fz) the force of eq. (2) from every neighbour in @p batch.
+/// Adds to (fx, fy, fz) the force of eq. (2) on globule (x, y, z, v, r) from every
+/// neighbour in @p batch.
 template <int M, int N>
-inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, float& fy,
-                     float& fz) {
+inline void sumBatch(const PairForce& p, const GlobuleArrays& s, const NeighborBatch& batch,
+                     float x, float y, float z, float vx, float vy, float vz, float r,
+                     float& fx, float& fy, float& fz) {
     const float invCr2 = 1.0f / (p.cr * p.cr), invCd2 = 1.0f / (p.cd * p.cd);
     const float minFraction2 = kMinDistanceFraction * kMinDistanceFraction;
-    const float *bx = batch.dx.data(), *by = batch.dy.data(), *bz = batch.dz.data();
-    const float *bvx = batch.dvx.data(), *bvy = batch.dvy.data(), *bvz = batch.dvz.data();
-    const float* bsum = batch.radiusSum.data();
+    const int32_t* index = batch.index.data();
     const uint32_t count = batch.count;
 #if defined(__AVX512F__)
     if constexpr (M > 0 && N > 0) {
@@ -129,14 +109,21 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
         const __m512 cr2 = _mm512_set1_ps(invCr2), cd2 = _mm512_set1_ps(invCd2);
         const __m512 b1 = _mm512_set1_ps(p.b1), b2 = _mm512_set1_ps(p.b2);
         const __m512 minF2 = _mm512_set1_ps(minFraction2);
+        const __m512 px = _mm512_set1_ps(x), py = _mm512_set1_ps(y), pz = _mm512_set1_ps(z);
+        const __m512 pvx = _mm512_set1_ps(vx), pvy = _mm512_set1_ps(vy), pvz = _mm512_set1_ps(vz);
+        const __m512 pr = _mm512_set1_ps(r);
         __m512 ax = zero, ay = zero, az = zero;
         for (uint32_t k = 0; k < count; k += 16) {
             const uint32_t left = count - k;
             const __mmask16 live = left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1);
-            const __m512 dx = _mm512_maskz_loadu_ps(live, bx + k);
-            const __m512 dy = _mm512_maskz_loadu_ps(live, by + k);
-            const __m512 dz = _mm512_maskz_loadu_ps(live, bz + k);
-            const __m512 sum = _mm512_mask_loadu_ps(one, live, bsum + k);
+            const __m512i j = _mm512_maskz_loadu_epi32(live, index + k);
+            const auto gather = [&](const float* a) {
+                return _mm512_mask_i32gather_ps(zero, live, j, a, 4);
+            };
+            const __m512 dx = _mm512_sub_ps(px, gather(s.x));
+            const __m512 dy = _mm512_sub_ps(py, gather(s.y));
+            const __m512 dz = _mm512_sub_ps(pz, gather(s.z));
+            const __m512 sum = _mm512_add_ps(pr, gather(s.radius));
             const __m512 sum2 = _mm512_mul_ps(sum, sum);
             __m512 invSum2 = _mm512_rcp14_ps(sum2);  // one Newton step: ~full precision
             invSum2 = _mm512_mul_ps(invSum2, _mm512_fnmadd_ps(sum2, invSum2, two));
@@ -153,9 +140,9 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
             for (int e = 1; e < N; ++e) powN = _mm512_mul_ps(powN, invD);
             const __m512 radial = _mm512_fmsub_ps(b1, powM, _mm512_mul_ps(b2, powN));
             const __m512 vDotP = _mm512_fmadd_ps(
-                _mm512_maskz_loadu_ps(live, bvz + k), dz,
-                _mm512_fmadd_ps(_mm512_maskz_loadu_ps(live, bvy + k), dy,
-                                _mm512_mul_ps(_mm512_maskz_loadu_ps(live, bvx + k), dx)));
+                _mm512_sub_ps(pvz, gather(s.vz)), dz,
+                _mm512_fmadd_ps(_mm512_sub_ps(pvy, gather(s.vy)), dy,
+                                _mm512_mul_ps(_mm512_sub_ps(pvx, gather(s.vx)), dx)));
             const __m512 drag = _mm512_mul_ps(_mm512_mul_ps(windowD, vDotP),
                                               _mm512_mul_ps(invD, invD));
             const __m512 scale = _mm512_fmsub_ps(windowR, radial, drag);
@@ -171,8 +158,9 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
 #endif
     float ax = 0, ay = 0, az = 0;
     for (uint32_t k = 0; k < count; ++k) {
-        const float dx = bx[k], dy = by[k], dz = bz[k];
-        const float sum = bsum[k];
+        const int32_t j = index[k];
+        const float dx = x - s.x[j], dy = y - s.y[j], dz = z - s.z[j];
+        const float sum = r + s.radius[j];
         const float invSum2 = 1.0f / (sum * sum);
         const float d2 = dx * dx + dy * dy + dz * dz;
         const float safeD2 = std::max(d2, minFraction2 * sum * sum);
@@ -180,7 +168,7 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
         const float invD = 1.0f / distance;
         const float windowR = std::max(0.0f, 1.0f - d2 * invSum2 * invCr2);
         const float windowD = std::max(0.0f, 1.0f - d2 * invSum2 * invCd2);
-        const float vDotP = bvx[k] * dx + bvy[k] * dy + bvz[k] * dz;
+        const float vDotP = (vx - s.vx[j]) * dx + (vy - s.vy[j]) * dy + (vz - s.vz[j]) * dz;
         const float scale =
             windowR * radialTerm<M, N>(p, invD, distance) - windowD * vDotP * (invD * invD);
         ax += scale * dx;

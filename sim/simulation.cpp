@@ -14,20 +14,6 @@ namespace globular {
 namespace {
 
 constexpr int kMaxSubstepRefinement = 64;  // on_explosion = substep: up to 64x more steps
-// Globules are stored in neighbour-grid order, refreshed this often: a globule's
-// neighbours then sit next to it in memory, which makes the force loop several times
-// faster. The order depends only on positions, so results stay thread-independent.
-constexpr int64_t kReorderInterval = 10;
-
-void permuteAccelerations(Accelerations& a, const std::vector<uint32_t>& order) {
-    if (a.x.size() != order.size()) return;
-    for (auto* values : {&a.x, &a.y, &a.z}) {
-        std::vector<float> out(order.size());
-        for (std::size_t k = 0; k < order.size(); ++k) out[k] = (*values)[order[k]];
-        values->swap(out);
-    }
-}
-
 std::string describeRunaway(const Globules& g, long i, double maxSpeed) {
     std::ostringstream out;
     const Vec3 p = g.position(std::size_t(i)), v = g.velocity(std::size_t(i));
@@ -66,13 +52,9 @@ std::size_t Simulation::plannedCount() const {
 
 void Simulation::step(double dt) {
     for (auto& e : mEmitters) e->emit(mTime, mGlobules, mNextId);
-    if (mSteps % kReorderInterval == 0 && !mGlobules.empty()) {
-        const std::vector<uint32_t>& order = mForces.gridOrder(mGlobules);
-        mGlobules.permute(order);
-        if (auto* carried = mIntegrator->carriedState()) permuteAccelerations(*carried, order);
-    }
+    // The force computation keeps the globules in neighbour-grid order (see forces.h).
     mIntegrator->step(mGlobules, float(dt),
-                      [this](const Globules& g, Accelerations& a) { mForces.compute(g, a); });
+                      [this](Globules& g, Accelerations& a) { mForces.compute(g, a); });
     mTime += dt;
     ++mSteps;
 }

@@ -87,7 +87,7 @@ TEST(Forces, GroundHoldsARestingGlobuleAtTheExpectedDepth) {
         g.add({0, 1.5, 0}, {0, 0, 0}, 0.5f, 1.0f, 0);
         SemiImplicitEuler integrator;
         for (int s = 0; s < 4000; ++s) {
-            integrator.step(g, 0.001f, [&](const Globules& gg, Accelerations& a) {
+            integrator.step(g, 0.001f, [&](Globules& gg, Accelerations& a) {
                 field.compute(gg, a);
             });
         }
