@@ -89,6 +89,7 @@ struct Renderer::Impl {
     detail::GroundPass ground;
     SrgbEncoder encode;
     std::vector<float> readback;
+    bool culling = true;
 
     Impl(int w, int h, int n, int shadowSize)
         : width(w), height(h), samples(n), target(w, h, n), shadowMap(shadowSize) {}
@@ -207,6 +208,7 @@ Image Renderer::drawSpheres(const Globules& globules, const FrameSetup& setup) {
     makeGlContextCurrent();
     Impl& im = *mImpl;
     if (!im.spheres) im.spheres.emplace(im.samples);
+    im.spheres->setCulling(im.culling);
     FrameSetup s = setup;
     SceneExtent own;
     if (s.content.empty || (s.render.colorBy != "constant" && s.ramp.empty)) {
@@ -248,6 +250,8 @@ Image Renderer::drawMesh(const MeshView& mesh, const FrameSetup& setup) {
     };
     return im.draw(s, own.box, Content{*im.mesh, mesh});
 }
+
+void Renderer::setOcclusionCulling(bool on) { mImpl->culling = on; }
 
 int Renderer::width() const { return mImpl->width; }
 int Renderer::height() const { return mImpl->height; }

@@ -47,6 +47,10 @@ class Renderer {
     /// @throw Error when a triangle index is out of range.
     Image drawMesh(const MeshView& mesh, const FrameSetup& setup);
 
+    /// Occlusion culling of hidden spheres before drawing (on by default). The image is
+    /// the same either way; off is for tests and measurements.
+    void setOcclusionCulling(bool on);
+
     int width() const;
     int height() const;
     int samples() const;

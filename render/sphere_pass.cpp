@@ -6,6 +6,7 @@
 
 #include "errors.h"
 #include "shaders.h"
+#include "sphere_culling.h"
 
 namespace globular::detail {
 
@@ -34,10 +35,6 @@ double axisHalfExtent(double a, double depth, double r) {
     const double denominator = 1.0 - std::abs(c) * tanAlpha;
     return denominator > 0.02 ? tanAlpha * (1.0 + c * c) / denominator
                               : std::numeric_limits<double>::infinity();
-}
-
-bool finite(float x, float y, float z, float r) {
-    return std::isfinite(x) && std::isfinite(y) && std::isfinite(z) && std::isfinite(r) && r > 0;
 }
 
 }  // namespace
@@ -71,7 +68,9 @@ SpherePass::SpherePass(int samples)
       mCorners(gl::makeBuffer()),
       mSquares(gl::makeBuffer()),
       mSquareIds(gl::makeBuffer()),
-      mTiles(gl::makeBuffer()) {
+      mTiles(gl::makeBuffer()),
+      mVisibleIndices(gl::makeBuffer()),
+      mShadowIndices(gl::makeBuffer()) {
     float pointSizes[2] = {1, 64};
     glGetFloatv(GL_POINT_SIZE_RANGE, pointSizes);
     mMaxSprite = std::min(250.0f, pointSizes[1] - 2.0f);
@@ -126,35 +125,48 @@ void SpherePass::upload(const Globules& g, bool withSpeed, const FrameUniforms& 
     }
     glBindTexture(GL_TEXTURE_BUFFER, 0);
 
-    // The few spheres too big for a sprite, in the camera's view or the light's; and the
-    // screen rectangle of every sprite, for the shading tiles.
+    // The sprites that may be seen, in the camera's view and the light's (sphere_culling.h);
+    // the few spheres too big for a sprite in either; and the screen rectangle of every
+    // sprite drawn, for the shading tiles (hidden ones lie within tiles of those drawn).
+    const std::vector<ScreenDisc> discs = cameraDiscs(g, f);
+    mVisible = mCulling ? unoccluded(discs, f.width, f.height) : std::vector<uint32_t>{};
     std::vector<float> squares, rects;
     std::vector<uint32_t> ids;
-    rects.reserve(4 * n);
     const float limit = mMaxSprite - kSpriteMargin;
-    const Mat4& view = f.view;
     bool everywhere = false;  // a sphere reaching the near plane: shade everything
     for (std::size_t i = 0; i < n; ++i) {
-        const float x = g.px[i], y = g.py[i], z = g.pz[i], r = g.radius[i];
-        if (!finite(x, y, z, r)) continue;  // the shaders skip these
-        const Vec3 v{view(0, 0) * x + view(0, 1) * y + view(0, 2) * z + view(0, 3),
-                     view(1, 0) * x + view(1, 1) * y + view(1, 2) * z + view(1, 3),
-                     view(2, 0) * x + view(2, 1) * y + view(2, 2) * z + view(2, 3)};
+        const ScreenDisc& d = discs[i];
+        if (!(d.half >= 0)) continue;  // not finite: the shaders skip these
+        const float r = g.radius[i];
         const bool bigInLight = f.shadowed && 2.0f * r * f.texelsPerUnit + 1.0f > limit;
-        const float size = spriteSize(v, r, f.focalPixels[0], f.focalPixels[1], f.zNear);
-        if (bigInLight || !(size <= limit)) {
-            squares.insert(squares.end(), {x, y, z, r});
+        if (bigInLight || !(2.0f * (d.half - 1.0f) <= limit)) {
+            squares.insert(squares.end(), {g.px[i], g.py[i], g.pz[i], r});
             ids.push_back(uint32_t(i + 1));
         }
-        if (!std::isfinite(size)) {
-            everywhere = true;
-            continue;
+        if (std::isinf(d.half)) everywhere = true;
+    }
+    if (!everywhere) {
+        auto addRect = [&](const ScreenDisc& d) {
+            if (!(d.half >= 0)) return;
+            rects.insert(rects.end(), {d.x - d.half, d.y - d.half, d.x + d.half, d.y + d.half});
+        };
+        rects.reserve(4 * (mCulling ? mVisible.size() : n));
+        if (mCulling) {
+            for (uint32_t i : mVisible) addRect(discs[i]);
+        } else {
+            for (const ScreenDisc& d : discs) addRect(d);
         }
-        const float depth = float(-v.z);
-        const float cx = 0.5f * f.width + float(v.x) / depth * f.focalPixels[0];
-        const float cy = 0.5f * f.height + float(v.y) / depth * f.focalPixels[1];
-        const float half = 0.5f * size + 1.0f;
-        rects.insert(rects.end(), {cx - half, cy - half, cx + half, cy + half});
+    }
+    mShadowVisible = mCulling && f.shadowed
+                         ? unoccluded(lightDiscs(g, f), f.shadowMapSize, f.shadowMapSize)
+                         : std::vector<uint32_t>{};
+    if (mCulling) {
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mVisibleIndices.id());
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mVisible.size() * sizeof(uint32_t)),
+                     mVisible.data(), GL_STREAM_DRAW);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mShadowIndices.id());
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mShadowVisible.size() * sizeof(uint32_t)),
+                     mShadowVisible.data(), GL_STREAM_DRAW);
     }
     mSquareCount = ids.size();
     glBindBuffer(GL_ARRAY_BUFFER, mSquares.id());
@@ -207,6 +219,17 @@ void SpherePass::drawSquares() const {
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(mSquareCount));
 }
 
+void SpherePass::drawPoints(const gl::Buffer& indices, std::size_t count) const {
+    glBindVertexArray(mPointArray.id());
+    if (mCulling) {
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices.id());
+        // Indexed: gl_VertexID is the globule's index, as the shaders expect.
+        glDrawElements(GL_POINTS, GLsizei(count), GL_UNSIGNED_INT, nullptr);
+    } else {
+        glDrawArrays(GL_POINTS, 0, GLsizei(mCount));
+    }
+}
+
 void SpherePass::drawShadow(const FrameUniforms& f) const {
     if (mCount == 0) return;
     glEnable(GL_PROGRAM_POINT_SIZE);
@@ -215,8 +238,7 @@ void SpherePass::drawShadow(const FrameUniforms& f) const {
     setVec3(mShadowPoints, "uLightToward", f.lightToward.front());
     glUniform1f(mShadowPoints.uniform("uTexelsPerUnit"), f.texelsPerUnit);
     glUniform1f(mShadowPoints.uniform("uMaxSprite"), mMaxSprite);
-    glBindVertexArray(mPointArray.id());
-    glDrawArrays(GL_POINTS, 0, GLsizei(mCount));
+    drawPoints(mShadowIndices, mShadowVisible.size());
 
     glUseProgram(mShadowSquares.id());
     setMat4(mShadowSquares, "uLightViewProj", f.lightViewProj);
@@ -243,8 +265,7 @@ void SpherePass::drawVisibility(const FrameUniforms& f, const FrameTarget& targe
         glUniform1i(program->uniform("uAlphaCoverage"), coverage ? 1 : 0);
         glUniform1f(program->uniform("uMaxSprite"), mMaxSprite);
         if (program == &mVisibilityPoints) {
-            glBindVertexArray(mPointArray.id());
-            glDrawArrays(GL_POINTS, 0, GLsizei(mCount));
+            drawPoints(mVisibleIndices, mVisible.size());
         } else {
             drawSquares();
         }

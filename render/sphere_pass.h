@@ -11,6 +11,8 @@
 // Deferring the shading makes its cost one per pixel instead of one per overlapping
 // sphere (a million globules overlap tens of times), and sprites cost a vertex each.
 // Spheres too large for a sprite (llvmpipe: 255 pixels) are drawn as instanced squares.
+// Sprites hidden behind other spheres, in the camera's view or the light's, are culled on
+// the CPU before drawing (sphere_culling.h) and the rest drawn by index: the same image.
 // The globules' arrays are uploaded as they are, and read back by the shading pass
 // through buffer textures: no interleaving copy.
 
@@ -36,11 +38,20 @@ class SpherePass {
     void drawVisibility(const FrameUniforms& frame, const FrameTarget& target) const;
     void drawShading(const FrameUniforms& frame, const FrameTarget& target) const;
 
+    /// Occlusion culling (sphere_culling.h), on by default: the frame is the same either
+    /// way, only faster with it.
+    void setCulling(bool on) { mCulling = on; }
+
     std::size_t count() const { return mCount; }
+    /// Spheres drawn in the camera's view and in the shadow map after culling.
+    std::size_t visibleCount() const { return mCulling ? mVisible.size() : mCount; }
+    std::size_t shadowCount() const { return mCulling ? mShadowVisible.size() : mCount; }
     std::size_t squareCount() const { return mSquareCount; }
 
   private:
     void drawSquares() const;
+    /// The sprites: those in @p indices (@p count of them) when culling, else all.
+    void drawPoints(const gl::Buffer& indices, std::size_t count) const;
     /// Marks the kTile x kTile pixel tiles that @p rects (x0, y0, x1, y1 in pixels from the
     /// bottom left) touch and uploads them as triangles, runs along each row merged.
     void uploadTiles(const std::vector<float>& rects, bool everywhere, const FrameUniforms& f);
@@ -52,6 +63,9 @@ class SpherePass {
     std::array<gl::Buffer, 5> mArrays;     // x, y, z, radius, speed
     std::array<gl::Texture, 5> mTextures;  // the same, as buffer textures
     gl::Buffer mCorners, mSquares, mSquareIds, mTiles;
+    gl::Buffer mVisibleIndices, mShadowIndices;  // element arrays of the culled sprites
+    bool mCulling = true;
+    std::vector<uint32_t> mVisible, mShadowVisible;  // globule indices, ascending
     std::size_t mCount = 0, mSquareCount = 0, mTileVertices = 0;
 };
 

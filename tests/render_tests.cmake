@@ -8,6 +8,7 @@ globular_test(render_unit_tests
             camera_test.cpp
             scene_extent_test.cpp
             contact_sheet_test.cpp
+            sphere_culling_test.cpp
     LIBS globular_render)
 globular_test(renderer_tests
     SOURCES renderer_test.cpp

@@ -5,10 +5,12 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <random>
 
 #include "color_ramp.h"
 #include "errors.h"
 #include "gl_context.h"
+#include "scene_extent.h"
 
 namespace globular {
 namespace {
@@ -295,6 +297,44 @@ TEST(Renderer, BigSpheresAreDrawnAsSquaresIdentically) {
     const double radius = std::tan(std::asin(0.5)) * kHeight / 2;  // 69 pixels
     EXPECT_NEAR(widthOnRow(image, kHeight / 2), 2 * radius, 1.0);
     expectColor(image, kWidth / 2, kHeight / 2, kBase, 1);
+}
+
+/// A dense heap, radius 1 at spacing about 1: most globules are hidden behind others.
+Globules denseHeap(std::size_t n) {
+    Globules g;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const double side = std::cbrt(double(n));
+    for (std::size_t i = 0; i < n; ++i) {
+        const double x = side * u(rng), z = side * u(rng);
+        const double y = 0.5 * side * (1 - (x * x + z * z) / (2 * side * side)) * (1 + u(rng));
+        g.add({x, y, z}, {u(rng), u(rng), u(rng)}, float(0.8 + 0.2 * (1 + u(rng))), 1, int32_t(i));
+    }
+    return g;
+}
+
+TEST(Renderer, OcclusionCullingLeavesTheImageUnchanged) {
+    // Culling only drops spheres that cannot change a sample: the frame, shadows,
+    // anti-aliasing and all, is the same byte for byte.
+    const Globules heap = denseHeap(20000);
+    SceneExtent extent;
+    extent.addFrame(heap);
+    for (int samples : {1, 4}) {
+        Renderer renderer(kWidth, kHeight, samples);
+        FrameSetup setup;
+        setup.lights = {LightSettings{}};
+        setup.render.colorBy = "speed";
+        setup.camera = autoFrame(extent, 0, 40, double(kWidth) / kHeight);
+        const Image culled = renderer.drawSpheres(heap, setup);
+        renderer.setOcclusionCulling(false);
+        const Image all = renderer.drawSpheres(heap, setup);
+        ASSERT_EQ(culled.width, all.width);
+        std::size_t differing = 0;
+        for (int y = 0; y < kHeight; ++y) {
+            for (int x = 0; x < kWidth; ++x) differing += rgb(culled, x, y) != rgb(all, x, y);
+        }
+        EXPECT_EQ(differing, 0u) << samples << " samples";
+    }
 }
 
 }  // namespace
