@@ -11,7 +11,7 @@
 //      through the axis intercepts alone (OpenVDB's fast-sweeping start,
 //      1/sqrt(sum 1/theta^2)) overestimate by up to 0.4 voxel where the normal is
 //      diagonal and only some axes cross within a voxel.
-//   3. Layer k (voxels at Chebyshev distance k from the interface, k = 1..band + 1)
+//   3. Layer k (voxels at Chebyshev distance k from the interface, k = 1..band)
 //      takes, among the surface samples its face neighbours of layer k - 1 took (edge
 //      and corner neighbours where no face neighbour has one), the one nearest to
 //      itself (closest-point propagation). A sample is a small disk on the
@@ -53,38 +53,72 @@ static_assert(MaskLeaf::DIM == FloatLeaf::DIM, "mask and float leaves must align
 
 int voxelIndex(int x, int y, int z) { return (x << 6) | (y << 3) | z; }
 
-/// The band's leaves in Coord order, each with its 27 neighbour leaves and per voxel: the
-/// interface voxel whose surface sample is nearest (relative coordinates), the distance
-/// to that sample (voxels) and the layer that found it. Interface voxels hold their own
-/// sample: the offset (voxels) to their foot point, along the surface normal there.
+/// The band's leaves in Coord order, each with its 27 neighbour leaves; per voxel the
+/// layer that reached it and the interface voxel whose surface sample is nearest
+/// (relative coordinates, voxels). Interface voxels are their own source; their sample
+/// is the offset to their foot point on the surface, along the normal there, kept only
+/// for leaves that hold interface voxels.
 struct Band {
-    std::vector<Coord> origins;
-    std::vector<std::array<int32_t, 27>> neighbours;  ///< index or -1; (dx+1)*9+(dy+1)*3+dz+1
-    struct Feet {
-        float offset[3][kVoxels];  ///< interface voxels only
-        float distance[kVoxels];
+    struct Voxels {
         int8_t source[3][kVoxels];
         uint8_t layer[kVoxels];
     };
-    std::vector<Feet> feet;
+    struct Samples {
+        int16_t offset[3][kVoxels];  ///< voxels * kOffsetScale; |offset| <= 1 voxel
+    };
+    static constexpr float kOffsetScale = 16384.0f;
+
+    std::vector<Coord> origins;
+    std::vector<std::array<int32_t, 27>> neighbours;  ///< index or -1; (dx+1)*9+(dy+1)*3+dz+1
+    std::unique_ptr<Voxels[]> voxels;
+    std::vector<int32_t> sampleSlot;  ///< per leaf, index into samples or -1
+    std::unique_ptr<Samples[]> samples;
 
     int32_t find(const Coord& origin) const {
         auto it = std::lower_bound(origins.begin(), origins.end(), origin);
         return it != origins.end() && *it == origin ? int32_t(it - origins.begin()) : -1;
     }
     /// The leaf holding local coordinates (x, y, z) of leaf @p i, which may lie in a
-    /// neighbour (or further, for bands wider than 6 voxels); nullptr outside the band.
-    const Feet* leafAt(std::size_t i, int x, int y, int z) const {
+    /// neighbour (or further, for bands wider than 6 voxels); -1 outside the band.
+    /// @p v receives the voxel's index in that leaf.
+    int32_t locate(std::size_t i, int x, int y, int z, int& v) const {
+        v = voxelIndex(x & (kDim - 1), y & (kDim - 1), z & (kDim - 1));
         const int lx = x >> 3, ly = y >> 3, lz = z >> 3;  // floor division by 8
-        int32_t n;
         if (lx >= -1 && lx <= 1 && ly >= -1 && ly <= 1 && lz >= -1 && lz <= 1) {
-            n = neighbours[i][(lx + 1) * 9 + (ly + 1) * 3 + lz + 1];
-        } else {
-            n = find(origins[i] + Coord(lx * kDim, ly * kDim, lz * kDim));
+            return neighbours[i][std::size_t((lx + 1) * 9 + (ly + 1) * 3 + lz + 1)];
         }
-        return n < 0 ? nullptr : &feet[std::size_t(n)];
+        return find(origins[i] + Coord(lx * kDim, ly * kDim, lz * kDim));
     }
+    /// Distance (voxels) from voxel (x, y, z) of leaf @p i to the sample of the interface
+    /// voxel @p s voxels away from it.
+    float distanceToSample(std::size_t i, int x, int y, int z, const int s[3]) const;
 };
+
+/// A sample is a disk of this radius (voxels) on the tangent plane at its foot point:
+/// samples lie about a voxel apart, so points between them are within half a voxel of
+/// one laterally. Point samples would overestimate distances by up to 0.4 voxel there;
+/// whole tangent planes underestimate by voxels near creases.
+constexpr float kSampleRadius = 0.5f;
+
+float Band::distanceToSample(std::size_t i, int x, int y, int z, const int s[3]) const {
+    int v;
+    const int32_t leaf = locate(i, x + s[0], y + s[1], z + s[2], v);
+    const Samples& sample = samples[std::size_t(sampleSlot[std::size_t(leaf)])];
+    const float o[3] = {float(sample.offset[0][v]) / kOffsetScale,
+                        float(sample.offset[1][v]) / kOffsetScale,
+                        float(sample.offset[2][v]) / kOffsetScale};
+    // This voxel relative to the foot point, and the unit normal there (none for a voxel
+    // on the surface: then the sample is a point).
+    const float w[3] = {-float(s[0]) - o[0], -float(s[1]) - o[1], -float(s[2]) - o[2]};
+    const float length = std::sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
+    const float inverse = length > 0 ? 1.0f / length : 0.0f;
+    const float along = (w[0] * o[0] + w[1] * o[1] + w[2] * o[2]) * inverse;
+    const float length2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+    const float lateral = std::sqrt(std::max(0.0f, length2 - along * along));
+    if (lateral <= kSampleRadius) return std::abs(along);
+    const float beyond = lateral - kSampleRadius;
+    return std::sqrt(beyond * beyond + along * along);
+}
 
 /// Voxels whose field value exceeds @p iso, as a mask with the field's leaves.
 MaskTree insideMask(const FloatGrid& field, float iso) {
@@ -112,62 +146,74 @@ MaskTree insideMask(const FloatGrid& field, float iso) {
     return inside;
 }
 
-/// Voxels with a face neighbour on the other side of the iso surface, both sides.
+/// Voxels with a face neighbour on the other side of the iso surface, both sides: the
+/// inside dilated by one voxel less the inside eroded by one.
 MaskTree interfaceMask(const MaskTree& inside) {
     using openvdb::tools::IGNORE_TILES;
     using openvdb::tools::NN_FACE;
-    MaskTree outerShell(inside);
-    openvdb::tools::dilateActiveValues(outerShell, 1, NN_FACE, IGNORE_TILES);
-    outerShell.topologyDifference(inside);
+    MaskTree shell(inside);
+    openvdb::tools::dilateActiveValues(shell, 1, NN_FACE, IGNORE_TILES);
     MaskTree core(inside);
     openvdb::tools::erodeActiveValues(core, 1, NN_FACE, IGNORE_TILES);
-    MaskTree innerShell(inside);
-    innerShell.topologyDifference(core);
-    outerShell.topologyUnion(innerShell);
-    return outerShell;
+    shell.topologyDifference(core);
+    openvdb::tools::pruneInactive(shell);  // the difference leaves empty leaves
+    return shell;
 }
 
-Band makeBand(const MaskTree& all) {
+/// The band over the leaves of @p layers; samples for the leaves of layer 0.
+Band makeBand(const std::vector<MaskTree>& layers) {
     Band band;
-    band.origins.reserve(all.leafCount());
-    for (auto leaf = all.cbeginLeaf(); leaf; ++leaf) band.origins.push_back(leaf->origin());
+    for (const MaskTree& layer : layers) {
+        for (auto leaf = layer.cbeginLeaf(); leaf; ++leaf) band.origins.push_back(leaf->origin());
+    }
     std::sort(band.origins.begin(), band.origins.end());
+    band.origins.erase(std::unique(band.origins.begin(), band.origins.end()), band.origins.end());
     const std::size_t n = band.origins.size();
     band.neighbours.resize(n);
-    band.feet.resize(n);
+    band.sampleSlot.assign(n, -1);
+    int32_t slots = 0;
+    for (auto leaf = layers[0].cbeginLeaf(); leaf; ++leaf) {
+        band.sampleSlot[std::size_t(band.find(leaf->origin()))] = slots++;
+    }
+    // Not value-initialised: every value is written before it is read but the layers,
+    // filled below.
+    band.voxels.reset(new Band::Voxels[n]);
+    band.samples.reset(new Band::Samples[std::size_t(slots)]);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](auto r) {
         for (std::size_t i = r.begin(); i < r.end(); ++i) {
             int k = 0;
             for (int dx = -1; dx <= 1; ++dx) {
                 for (int dy = -1; dy <= 1; ++dy) {
                     for (int dz = -1; dz <= 1; ++dz) {
-                        band.neighbours[i][k++] =
+                        band.neighbours[i][std::size_t(k++)] =
                             band.find(band.origins[i] + Coord(dx * kDim, dy * kDim, dz * kDim));
                     }
                 }
             }
-            std::fill(std::begin(band.feet[i].layer), std::end(band.feet[i].layer), kUnknown);
+            std::fill(std::begin(band.voxels[i].layer), std::end(band.voxels[i].layer), kUnknown);
         }
     });
     return band;
 }
 
-/// Layer 0: the foot point of the local plane through the iso crossings of each
-/// interface voxel's axes.
+/// Layer 0: the foot point of the local plane through the iso crossing of each
+/// interface voxel.
 void footOnInterface(const FloatGrid& field, float iso, const MaskTree& interface, Band& band) {
     openvdb::tree::LeafManager<const MaskTree> leaves(interface);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.leafCount(), 16), [&](auto r) {
         auto acc = field.getConstAccessor();
         for (std::size_t l = r.begin(); l < r.end(); ++l) {
             const MaskLeaf& leaf = leaves.leaf(l);
-            Band::Feet& feet = band.feet[std::size_t(band.find(leaf.origin()))];
+            const std::size_t i = std::size_t(band.find(leaf.origin()));
+            Band::Voxels& voxels = band.voxels[i];
+            Band::Samples& sample = band.samples[std::size_t(band.sampleSlot[i])];
             for (auto it = leaf.cbeginValueOn(); it; ++it) {
                 const Coord ijk = it.getCoord();
                 const float f = acc.getValue(ijk);
                 const bool in = f > iso;
-                float gradient[3];     // central differences, voxel units
-                float theta[3];        // distance to the nearer crossing along each axis
-                float direction[3];    // +-1 towards it, 0 where the axis does not cross
+                float gradient[3];   // central differences, voxel units
+                float theta[3];      // distance to the nearer crossing along each axis
+                float direction[3];  // +-1 towards it, 0 where the axis does not cross
                 bool onSurface = false;
                 for (int a = 0; a < 3; ++a) {
                     float around[2];
@@ -184,14 +230,12 @@ void footOnInterface(const FloatGrid& field, float iso, const MaskTree& interfac
                     }
                     gradient[a] = 0.5f * (around[1] - around[0]);
                 }
-                const auto v = it.pos();
-                feet.layer[v] = 0;
-                for (auto& c : feet.source) c[v] = 0;
                 const float length = std::sqrt(gradient[0] * gradient[0] +
                                                gradient[1] * gradient[1] +
                                                gradient[2] * gradient[2]);
+                float offset[3] = {0, 0, 0};
                 if (onSurface) {
-                    for (auto& o : feet.offset) o[v] = 0.0f;
+                    // The foot point is the voxel itself.
                 } else if (length > 0) {
                     // The plane through the crossing on the axis most nearly along the
                     // normal, perpendicular to the gradient; the foot lies towards larger
@@ -205,7 +249,7 @@ void footOnInterface(const FloatGrid& field, float iso, const MaskTree& interfac
                     }
                     const float d = theta[best] * std::abs(gradient[best]) / length;
                     const float toward = in ? -d / length : d / length;
-                    for (int a = 0; a < 3; ++a) feet.offset[a][v] = toward * gradient[a];
+                    for (int a = 0; a < 3; ++a) offset[a] = toward * gradient[a];
                 } else {
                     // A flat spot: the plane through the axis crossings instead.
                     float sum = 0;
@@ -213,29 +257,18 @@ void footOnInterface(const FloatGrid& field, float iso, const MaskTree& interfac
                         if (direction[a] != 0) sum += 1 / (theta[a] * theta[a]);
                     }
                     for (int a = 0; a < 3; ++a) {
-                        feet.offset[a][v] = direction[a] != 0 ? direction[a] / theta[a] / sum : 0;
+                        if (direction[a] != 0) offset[a] = direction[a] / theta[a] / sum;
                     }
                 }
-                feet.distance[v] = std::sqrt(feet.offset[0][v] * feet.offset[0][v] +
-                                             feet.offset[1][v] * feet.offset[1][v] +
-                                             feet.offset[2][v] * feet.offset[2][v]);
+                const auto v = it.pos();
+                for (int a = 0; a < 3; ++a) {
+                    sample.offset[a][v] = int16_t(std::lround(offset[a] * Band::kOffsetScale));
+                    voxels.source[a][v] = 0;
+                }
+                voxels.layer[v] = 0;
             }
         }
     });
-}
-
-/// Distance (voxels) from a point to a surface sample seen as a disk of radius
-/// kSampleRadius on the tangent plane: @p w is the point relative to the sample,
-/// @p n the unit normal there (zero for a sample without one: then a point).
-constexpr float kSampleRadius = 0.5f;  // voxels: samples lie about a voxel apart
-
-float distanceToSample(const float w[3], const float n[3]) {
-    const float length2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
-    const float along = w[0] * n[0] + w[1] * n[1] + w[2] * n[2];
-    const float lateral = std::sqrt(std::max(0.0f, length2 - along * along));
-    if (lateral <= kSampleRadius) return std::abs(along);
-    const float beyond = lateral - kSampleRadius;
-    return std::sqrt(beyond * beyond + along * along);
 }
 
 /// The 26 neighbour offsets, faces first, then edges, then corners.
@@ -257,7 +290,7 @@ struct NeighbourOffsets {
     }
 };
 
-/// Layer k: each voxel takes, among the samples its neighbours of layer k - 1 found, the
+/// Layer k: each voxel takes, among the samples its neighbours of layer k - 1 took, the
 /// one nearest to itself.
 void footFromNeighbours(const MaskTree& layer, uint8_t k, Band& band) {
     static const NeighbourOffsets offsets;
@@ -266,25 +299,11 @@ void footFromNeighbours(const MaskTree& layer, uint8_t k, Band& band) {
         for (std::size_t l = r.begin(); l < r.end(); ++l) {
             const MaskLeaf& leaf = leaves.leaf(l);
             const std::size_t i = std::size_t(band.find(leaf.origin()));
-            Band::Feet& feet = band.feet[i];
-            const Band::Feet* around[27];
-            for (int n = 0; n < 27; ++n) {
-                const int32_t j = band.neighbours[i][std::size_t(n)];
-                around[n] = j < 0 ? nullptr : &band.feet[std::size_t(j)];
-            }
-            // Local coordinates -1..16 to (neighbour leaf, voxel).
-            auto locate = [&](int x, int y, int z, int& v) -> const Band::Feet* {
-                v = voxelIndex(x & (kDim - 1), y & (kDim - 1), z & (kDim - 1));
-                const int lx = x >> 3, ly = y >> 3, lz = z >> 3;
-                if (lx >= -1 && lx <= 1 && ly >= -1 && ly <= 1 && lz >= -1 && lz <= 1) {
-                    return around[(lx + 1) * 9 + (ly + 1) * 3 + lz + 1];
-                }
-                return band.leafAt(i, x, y, z);
-            };
+            Band::Voxels& voxels = band.voxels[i];
             for (auto it = leaf.cbeginValueOn(); it; ++it) {
                 const Coord p = MaskLeaf::offsetToLocalCoord(it.pos());
                 float best = INFINITY;
-                int bestKey = 0;
+                int bestSource[3] = {0, 0, 0};
                 int tried[26];  // sources already measured: neighbours often share one
                 int triedCount = 0;
                 for (int nb = 0; nb < 26; ++nb) {
@@ -292,33 +311,26 @@ void footFromNeighbours(const MaskTree& layer, uint8_t k, Band& band) {
                     // error than with all 26, at a third of the time); edges and corners
                     // only where no face neighbour has one.
                     if (nb >= 6 && triedCount > 0) break;
-                    const int dx = offsets.d[nb][0], dy = offsets.d[nb][1], dz = offsets.d[nb][2];
+                    const int* d = offsets.d[nb];
                     int v;
-                    const Band::Feet* from = locate(p.x() + dx, p.y() + dy, p.z() + dz, v);
-                    if (!from || from->layer[v] >= k) continue;
-                    const int sx = dx + from->source[0][v], sy = dy + from->source[1][v],
-                              sz = dz + from->source[2][v];
-                    const int key = ((sx + 64) << 14) | ((sy + 64) << 7) | (sz + 64);
+                    const int32_t n = band.locate(i, p.x() + d[0], p.y() + d[1], p.z() + d[2], v);
+                    if (n < 0) continue;
+                    const Band::Voxels& from = band.voxels[std::size_t(n)];
+                    if (from.layer[v] >= k) continue;
+                    const int s[3] = {d[0] + from.source[0][v], d[1] + from.source[1][v],
+                                      d[2] + from.source[2][v]};
+                    const int key = ((s[0] + 64) << 14) | ((s[1] + 64) << 7) | (s[2] + 64);
                     bool seen = false;
                     for (int t = 0; t < triedCount; ++t) seen |= tried[t] == key;
                     if (seen) continue;
                     tried[triedCount++] = key;
-                    int s;
-                    const Band::Feet* sample = locate(p.x() + sx, p.y() + sy, p.z() + sz, s);
-                    const float o[3] = {sample->offset[0][s], sample->offset[1][s],
-                                        sample->offset[2][s]};
-                    // This voxel relative to the sample's foot point.
-                    const float w[3] = {-float(sx) - o[0], -float(sy) - o[1], -float(sz) - o[2]};
-                    const float length = sample->distance[s];
-                    const float inverse = length > 0 ? 1.0f / length : 0.0f;
-                    const float n[3] = {o[0] * inverse, o[1] * inverse, o[2] * inverse};
-                    const float d = distanceToSample(w, n);
-                    if (d < best) best = d, bestKey = key;
+                    const float distance = band.distanceToSample(i, p.x(), p.y(), p.z(), s);
+                    if (distance < best) {
+                        best = distance;
+                        for (int a = 0; a < 3; ++a) bestSource[a] = s[a];
+                    }
                 }
-                feet.distance[it.pos()] = best;
-                feet.source[0][it.pos()] = int8_t(((bestKey >> 14) & 127) - 64);
-                feet.source[1][it.pos()] = int8_t(((bestKey >> 7) & 127) - 64);
-                feet.source[2][it.pos()] = int8_t((bestKey & 127) - 64);
+                for (int a = 0; a < 3; ++a) voxels.source[a][it.pos()] = int8_t(bestSource[a]);
             }
         }
     });
@@ -326,8 +338,8 @@ void footFromNeighbours(const MaskTree& layer, uint8_t k, Band& band) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.leafCount(), 64), [&](auto r) {
         for (std::size_t l = r.begin(); l < r.end(); ++l) {
             const MaskLeaf& leaf = leaves.leaf(l);
-            Band::Feet& feet = band.feet[std::size_t(band.find(leaf.origin()))];
-            for (auto it = leaf.cbeginValueOn(); it; ++it) feet.layer[it.pos()] = k;
+            Band::Voxels& voxels = band.voxels[std::size_t(band.find(leaf.origin()))];
+            for (auto it = leaf.cbeginValueOn(); it; ++it) voxels.layer[it.pos()] = k;
         }
     });
 }
@@ -347,25 +359,23 @@ FloatGrid::Ptr fieldToLevelSet(const FloatGrid& field, double isoValue, double b
     levelSet->setName("surface");
 
     const MaskTree inside = insideMask(field, iso);
-    // A voxel within bandWidth of the surface lies within Chebyshev distance
-    // bandWidth + 1 of an interface voxel.
-    const int layerCount = int(std::ceil(bandWidth)) + 1;
+    // A voxel closer than bandWidth to the surface lies within Chebyshev distance
+    // ceil(bandWidth) of an interface voxel: the cell holding its nearest surface point
+    // has interface voxels at its corners, within 1 of that point along each axis.
+    const int layerCount = int(std::ceil(bandWidth));
     std::vector<MaskTree> layers;
     layers.push_back(interfaceMask(inside));
-    openvdb::tools::pruneInactive(layers[0]);
-    MaskTree all(layers[0]);
     for (int k = 1; k <= layerCount; ++k) {
         MaskTree next(layers[std::size_t(k - 1)]);
         openvdb::tools::dilateActiveValues(next, 1, NN_FACE_EDGE_VERTEX, IGNORE_TILES);
         next.topologyDifference(layers[std::size_t(k - 1)]);
         if (k >= 2) next.topologyDifference(layers[std::size_t(k - 2)]);
         openvdb::tools::pruneInactive(next);  // the differences leave empty leaves
-        all.topologyUnion(next);
         layers.push_back(std::move(next));
     }
-    if (all.empty()) return levelSet;
+    if (layers[0].empty()) return levelSet;
 
-    Band band = makeBand(all);
+    Band band = makeBand(layers);
     footOnInterface(field, iso, layers[0], band);
     for (int k = 1; k <= layerCount; ++k) {
         footFromNeighbours(layers[std::size_t(k)], uint8_t(k), band);
@@ -377,13 +387,19 @@ FloatGrid::Ptr fieldToLevelSet(const FloatGrid& field, double isoValue, double b
         openvdb::tree::ValueAccessor<const MaskTree> insideAcc(inside);
         for (std::size_t i = r.begin(); i < r.end(); ++i) {
             const MaskLeaf* in = insideAcc.probeConstLeaf(band.origins[i]);
-            const Band::Feet& feet = band.feet[i];
+            const Band::Voxels& voxels = band.voxels[i];
             auto leaf = std::make_unique<FloatLeaf>(band.origins[i], background, false);
             float* values = leaf->buffer().data();
             bool any = false;
             for (int v = 0; v < kVoxels; ++v) {
                 const float sign = in && in->isValueOn(openvdb::Index(v)) ? -1.0f : 1.0f;
-                const float d = feet.layer[v] != kUnknown ? feet.distance[v] : float(bandWidth);
+                float d = float(bandWidth);
+                if (voxels.layer[v] != kUnknown) {
+                    const Coord p = FloatLeaf::offsetToLocalCoord(openvdb::Index(v));
+                    const int s[3] = {voxels.source[0][v], voxels.source[1][v],
+                                      voxels.source[2][v]};
+                    d = band.distanceToSample(i, p.x(), p.y(), p.z(), s);
+                }
                 if (d < float(bandWidth)) {
                     values[v] = sign * d * h;
                     leaf->setValueOn(openvdb::Index(v));
