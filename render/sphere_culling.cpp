@@ -64,6 +64,12 @@ std::vector<ScreenDisc> cameraDiscs(const Globules& g, const FrameUniforms& f) {
             d.x = float(0.5 * f.width + v.x / depth * f.focalPixels[0]);
             d.y = float(0.5 * f.height + v.y / depth * f.focalPixels[1]);
             d.half = 0.5f * size + 1.0f;
+            // Fragments are shaded at pixel centres. The silhouette reaches farthest from
+            // the projected centre along the radial direction (the axis extent there); the
+            // anti-aliased edge adds at most half a pixel's angle, under 0.8 pixels.
+            const double focal = std::max(f.focalPixels[0], f.focalPixels[1]);
+            const double radial = std::sqrt(v.x * v.x + v.y * v.y);
+            d.reach = 0.5f * (spriteSize({radial, 0, v.z}, r, focal, focal, zNear) - 1.0f) + 1.0f;
             // Window depth is stored in 24 bits: two depths d apart stay ordered when d is
             // more than a few steps of 2^-24 * depth^2 / zNear; plus float rounding.
             const double margin = 4.0 * 0x1p-24 * depth * depth / zNear + 1e-5 * depth;
@@ -103,6 +109,7 @@ std::vector<ScreenDisc> lightDiscs(const Globules& g, const FrameUniforms& f) {
             d.x = float((0.5 * cx + 0.5) * size);
             d.y = float((0.5 * cy + 0.5) * size);
             d.half = float(r * tpu + 1.5);
+            d.reach = float(r * tpu + 0.01);  // texel centres within the disc
             d.nearDepth = float(cz - radiusDepth - margin);
             d.coreRadius = float(kLightCore * r * tpu - 0.01);
             d.coreDepth = float(cz - radiusDepth * std::sqrt(1 - kLightCore * kLightCore));
@@ -196,9 +203,10 @@ std::vector<uint32_t> unoccluded(const std::vector<ScreenDisc>& discs, int width
                 visible[i] = 1;
                 continue;
             }
+            // The pixels whose centres are within reach.
             int x0, x1, y0, y1;
-            pixelSpan(d.x - d.half, d.x + d.half, width, x0, x1);
-            pixelSpan(d.y - d.half, d.y + d.half, height, y0, y1);
+            pixelSpan(d.x - d.reach - 0.5f, d.x + d.reach - 0.5f, width, x0, x1);
+            pixelSpan(d.y - d.reach - 0.5f, d.y + d.reach - 0.5f, height, y0, y1);
             bool hiddenByBlocks = true;
             for (int by = y0 / kBlock; by <= y1 / kBlock && hiddenByBlocks && y0 <= y1; ++by) {
                 const float* far = &blockFar[std::size_t(by) * blockColumns];
@@ -211,8 +219,13 @@ std::vector<uint32_t> unoccluded(const std::vector<ScreenDisc>& discs, int width
             }
             bool seen = false;
             for (int py = y0; py <= y1 && !seen && !hiddenByBlocks; ++py) {
+                const float dy = float(py) + 0.5f - d.y;
+                if (dy * dy > d.reach * d.reach) continue;
+                const float w = std::sqrt(d.reach * d.reach - dy * dy);
+                const int first = std::max(x0, int(std::ceil(d.x - w - 0.5f)));
+                const int last = std::min(x1, int(std::floor(d.x + w - 0.5f)));
                 const float* row = &grid[std::size_t(py) * width];
-                for (int px = x0; px <= x1; ++px) {
+                for (int px = first; px <= last; ++px) {
                     if (!(row[px] < d.nearDepth)) {
                         seen = true;
                         break;

@@ -27,6 +27,7 @@ struct ScreenDisc {
     /// Half side of the square around (x, y) that holds every fragment the sphere can
     /// write. +infinity: it may cover anything (kept, never tested); negative: never drawn.
     float half = -1;
+    float reach = 0;      ///< radius about (x, y) holding the centres of all pixels it can write
     float nearDepth = 0;  ///< its nearest point, less the depth buffer's resolution
     /// Radius of a circle about (x, y) in which it covers every sample; <= 0: none.
     float coreRadius = 0;

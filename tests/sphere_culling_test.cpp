@@ -12,6 +12,7 @@ ScreenDisc disc(float x, float y, float half, float nearDepth, float coreRadius,
     d.x = x;
     d.y = y;
     d.half = half;
+    d.reach = half;
     d.nearDepth = nearDepth;
     d.coreRadius = coreRadius;
     d.coreDepth = coreDepth;
@@ -49,12 +50,23 @@ TEST(SphereCulling, OffScreenAndUndrawableDiscsAreDroppedUnboundedOnesKept) {
 TEST(SphereCulling, CoresCoverOnlyWholePixels) {
     // A core of radius 0.9 around a pixel corner holds no whole pixel: hides nothing.
     const std::vector<ScreenDisc> discs = {disc(10, 10, 3, 1, 0.9f, 1),
-                                           disc(10, 10, 0.4f, 5, 0, 0)};
+                                           disc(10.5f, 10.5f, 0.4f, 5, 0, 0)};
     EXPECT_EQ(unoccluded(discs, 20, 20), (std::vector<uint32_t>{0, 1}));
     // One of radius 1.5 about a pixel centre holds that pixel wholly: hides a disc there.
     const std::vector<ScreenDisc> centred = {disc(10.5f, 10.5f, 3, 1, 1.5f, 1),
                                              disc(10.5f, 10.5f, 0.4f, 5, 0, 0)};
     EXPECT_EQ(unoccluded(centred, 20, 20), (std::vector<uint32_t>{0}));
+}
+
+TEST(SphereCulling, OnlyPixelCentresWithinReachCount) {
+    // A core hides the pixel (10, 10) only. A disc reaching 0.6 pixels from that pixel's
+    // centre touches no other centre: hidden. Reaching 1.2 pixels, it touches four more.
+    std::vector<ScreenDisc> discs = {disc(10.5f, 10.5f, 3, 1, 1.5f, 1),
+                                     disc(10.5f, 10.5f, 2, 5, 0, 0)};
+    discs[1].reach = 0.6f;
+    EXPECT_EQ(unoccluded(discs, 20, 20), (std::vector<uint32_t>{0}));
+    discs[1].reach = 1.2f;
+    EXPECT_EQ(unoccluded(discs, 20, 20), (std::vector<uint32_t>{0, 1}));
 }
 
 }  // namespace
