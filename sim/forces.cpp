@@ -59,38 +59,53 @@ void buildGrid(const Globules& g, const PairForce& pair, NeighborGrid& grid) {
 
 namespace {
 
-/// Sums forces on the globules [begin, end) of @p s, which are in grid order.
+/// Sums forces on the globules [begin, end) of @p s, which are in grid order. Globules
+/// that share a cell are consecutive: they are handled as a group with shared candidates.
 template <int M, int N>
 void sumRange(const PairForce& pair, const NeighborGrid& grid, const Globules& s,
               std::size_t begin, std::size_t end, Accelerations& forces) {
     const GlobuleArrays arrays{s.px.data(), s.py.data(), s.pz.data(),    s.vx.data(),
                                s.vy.data(), s.vz.data(), s.radius.data()};
     const float reach = pair.cutoff(1.0f), reach2 = reach * reach;
+    // The cell edge is the largest reach of any pair; a hair more keeps the box test
+    // conservative under rounding (the pair test decides).
+    const float groupReach = grid.cellSize() * 1.0001f;
     std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> runs;
-    std::array<int32_t, 3> cell{INT32_MIN, 0, 0};
-    int runCount = 0;
+    GroupCandidates candidates;
     NeighborBatch batch;
-    for (std::size_t k = begin; k < end; ++k) {
-        // Consecutive globules mostly share a cell: reuse its neighbour runs.
-        const auto here = grid.cellOf(s.px[k], s.py[k], s.pz[k]);
-        if (here != cell) {
-            cell = here;
-            runCount = grid.neighborRuns(s.px[k], s.py[k], s.pz[k], runs);
-            std::size_t candidates = 0;
-            for (int b = 0; b < runCount; ++b) candidates += runs[b].second - runs[b].first;
-            batch.reserve(candidates);
+    for (std::size_t first = begin; first < end;) {
+        const auto cell = grid.cellOf(s.px[first], s.py[first], s.pz[first]);
+        float lo[3] = {s.px[first], s.py[first], s.pz[first]};
+        float hi[3] = {lo[0], lo[1], lo[2]};
+        std::size_t last = first + 1;
+        for (; last < end && grid.cellOf(s.px[last], s.py[last], s.pz[last]) == cell; ++last) {
+            const float p[3] = {s.px[last], s.py[last], s.pz[last]};
+            for (int a = 0; a < 3; ++a) {
+                lo[a] = std::min(lo[a], p[a]);
+                hi[a] = std::max(hi[a], p[a]);
+            }
         }
-        batch.count = 0;
+        const int runCount = grid.neighborRuns(s.px[first], s.py[first], s.pz[first], runs);
+        std::size_t total = 0;
+        for (int b = 0; b < runCount; ++b) total += runs[b].second - runs[b].first;
+        candidates.reserve(total);
+        candidates.count = 0;
         for (int b = 0; b < runCount; ++b) {
-            collectNeighbors(arrays, runs[b].first, runs[b].second, s.px[k], s.py[k], s.pz[k],
-                             s.radius[k], reach2, batch);
+            collectGroupCandidates(arrays, runs[b].first, runs[b].second, lo, hi, groupReach,
+                                   candidates);
         }
-        float fx = 0, fy = 0, fz = 0;
-        sumBatch<M, N>(pair, arrays, batch, s.px[k], s.py[k], s.pz[k], s.vx[k], s.vy[k],
-                       s.vz[k], s.radius[k], fx, fy, fz);
-        forces.x[k] = fx;
-        forces.y[k] = fy;
-        forces.z[k] = fz;
+        batch.reserve(candidates.count);
+        for (std::size_t k = first; k < last; ++k) {
+            batch.count = 0;
+            collectNeighbors(candidates, s.px[k], s.py[k], s.pz[k], s.vx[k], s.vy[k], s.vz[k],
+                             s.radius[k], reach2, batch);
+            float fx = 0, fy = 0, fz = 0;
+            sumBatch<M, N>(pair, batch, fx, fy, fz);
+            forces.x[k] = fx;
+            forces.y[k] = fy;
+            forces.z[k] = fz;
+        }
+        first = last;
     }
 }
 

@@ -1,11 +1,13 @@
 #pragma once
-// The force loop's inner kernels, in two passes per globule:
-//   1. collectNeighbors: test candidates (contiguous runs of the neighbour grid) against
-//      the pair's reach and compact those within it into a NeighborBatch;
-//   2. sumBatch: eq. (2)-(5) summed over the batch, every lane useful.
+// The force loop's inner kernels, in three passes:
+//   1. collectGroupCandidates, once per grid cell: the globules of the cell's runs within
+//      reach of the bounding box of the cell's members, copied into one short array;
+//   2. collectNeighbors, per member: those candidates within the pair's reach, compacted
+//      into a NeighborBatch of relative positions and velocities;
+//   3. sumBatch, per member: eq. (2)-(5) summed over the batch, every lane useful.
 // The grid hands about five candidates for each one within reach, so testing them cheaply
 // and evaluating the force only for the rest is what makes the loop fast. With AVX-512
-// both passes use 16 lanes (compress for the compaction, rsqrt14 + one Newton step for
+// the passes use 16 lanes (compress for the compaction, rsqrt14 + one Newton step for
 // 1/D); elsewhere they are plain loops that give the same neighbours in the same order.
 // The arithmetic is PairForce::accumulate's, to single-precision rounding.
 
@@ -26,52 +28,147 @@ struct GlobuleArrays {
     const float *x, *y, *z, *vx, *vy, *vz, *radius;
 };
 
-/// One globule's neighbours within reach, as indices into the GlobuleArrays.
+/// One globule's neighbours within reach: P = x_i - x_j, V = v_i - v_j and r_i + r_j.
 struct NeighborBatch {
     static constexpr uint32_t kPadding = 16;  ///< vector stores write up to 16 past count
-    std::vector<int32_t> index;
+    std::vector<float> dx, dy, dz, dvx, dvy, dvz, radiusSum;
     uint32_t count = 0;
 
     /// Room for @p candidates entries.
     void reserve(std::size_t candidates) {
-        if (index.size() < candidates + kPadding) index.resize(candidates + kPadding);
+        for (auto* a : {&dx, &dy, &dz, &dvx, &dvy, &dvz, &radiusSum}) {
+            if (a->size() < candidates + kPadding) a->resize(candidates + kPadding);
+        }
     }
 };
 
-/// Appends to @p out the globules j in [begin, end) of @p s with 0 < |x_i - x_j| <
-/// reach (r_i + r_j), reach = PairForce::cutoff(1). Globule i itself (and any globule at
-/// exactly its position, whose force is zero) is left out. @p out has room for them.
-inline void collectNeighbors(const GlobuleArrays& s, uint32_t begin, uint32_t end, float x,
-                             float y, float z, float r, float reach2, NeighborBatch& out) {
+/// The candidates shared by a group of globules (the members of one grid cell): the
+/// globules of the cell's runs within reach of the group's bounding box, copied
+/// contiguously. Each member then tests one short array instead of the nine runs (about
+/// two thirds as many candidates).
+struct GroupCandidates {
+    static constexpr uint32_t kPadding = 16;  ///< vector stores write up to 16 past count
+    std::vector<float> x, y, z, vx, vy, vz, radius;
+    uint32_t count = 0;
+
+    /// Room for @p candidates entries.
+    void reserve(std::size_t candidates) {
+        if (x.size() >= candidates + kPadding) return;
+        for (auto* a : {&x, &y, &z, &vx, &vy, &vz, &radius}) a->resize(candidates + kPadding);
+    }
+};
+
+/// Appends to @p out the globules j in [begin, end) of @p s within @p reach of the box
+/// [@p lo, @p hi]. @p out has room for them.
+inline void collectGroupCandidates(const GlobuleArrays& s, uint32_t begin, uint32_t end,
+                                   const float lo[3], const float hi[3], float reach,
+                                   GroupCandidates& out) {
     uint32_t count = out.count;
-    int32_t* to = out.index.data();
+    const float reach2 = reach * reach;
 #if defined(__AVX512F__)
-    const __m512 px = _mm512_set1_ps(x), py = _mm512_set1_ps(y), pz = _mm512_set1_ps(z);
-    const __m512 pr = _mm512_set1_ps(r), reach2v = _mm512_set1_ps(reach2);
-    const __m512 zero = _mm512_setzero_ps();
-    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const __m512 zero = _mm512_setzero_ps(), reach2v = _mm512_set1_ps(reach2);
+    const auto outside = [&](__m512 v, int axis) {  // distance from the box along an axis
+        return _mm512_max_ps(zero, _mm512_max_ps(_mm512_sub_ps(_mm512_set1_ps(lo[axis]), v),
+                                                 _mm512_sub_ps(v, _mm512_set1_ps(hi[axis]))));
+    };
     for (uint32_t j = begin; j < end; j += 16) {
         const uint32_t left = end - j;
         const __mmask16 live = left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1);
-        const __m512 dx = _mm512_sub_ps(px, _mm512_maskz_loadu_ps(live, s.x + j));
-        const __m512 dy = _mm512_sub_ps(py, _mm512_maskz_loadu_ps(live, s.y + j));
-        const __m512 dz = _mm512_sub_ps(pz, _mm512_maskz_loadu_ps(live, s.z + j));
-        const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
-        const __m512 sum = _mm512_add_ps(pr, _mm512_maskz_loadu_ps(live, s.radius + j));
-        const __m512 limit = _mm512_mul_ps(_mm512_mul_ps(sum, sum), reach2v);
-        const __mmask16 near = _mm512_mask_cmp_ps_mask(live, d2, limit, _CMP_LT_OQ) &
-                               _mm512_cmp_ps_mask(d2, zero, _CMP_GT_OQ);
-        // No early-out when no lane is near: that branch is unpredictable, and slower.
-        const __m512i index = _mm512_add_epi32(_mm512_set1_epi32(int32_t(j)), lane);
-        _mm512_storeu_si512(to + count, _mm512_maskz_compress_epi32(near, index));
+        const __m512 x = _mm512_maskz_loadu_ps(live, s.x + j);
+        const __m512 y = _mm512_maskz_loadu_ps(live, s.y + j);
+        const __m512 z = _mm512_maskz_loadu_ps(live, s.z + j);
+        const __m512 ex = outside(x, 0), ey = outside(y, 1), ez = outside(z, 2);
+        const __m512 d2 = _mm512_fmadd_ps(ez, ez, _mm512_fmadd_ps(ey, ey, _mm512_mul_ps(ex, ex)));
+        const __mmask16 near = _mm512_mask_cmp_ps_mask(live, d2, reach2v, _CMP_LE_OQ);
+        const auto keep = [&](std::vector<float>& to, __m512 v) {
+            _mm512_storeu_ps(to.data() + count, _mm512_maskz_compress_ps(near, v));
+        };
+        const auto keepFrom = [&](std::vector<float>& to, const float* from) {
+            keep(to, _mm512_maskz_loadu_ps(near, from + j));
+        };
+        keep(out.x, x);
+        keep(out.y, y);
+        keep(out.z, z);
+        keepFrom(out.vx, s.vx);
+        keepFrom(out.vy, s.vy);
+        keepFrom(out.vz, s.vz);
+        keepFrom(out.radius, s.radius);
         count += uint32_t(__builtin_popcount(near));
     }
 #else
     for (uint32_t j = begin; j < end; ++j) {
-        const float dx = x - s.x[j], dy = y - s.y[j], dz = z - s.z[j];
+        const float p[3] = {s.x[j], s.y[j], s.z[j]};
+        float d2 = 0;
+        for (int axis = 0; axis < 3; ++axis) {
+            const float e = std::max(0.0f, std::max(lo[axis] - p[axis], p[axis] - hi[axis]));
+            d2 += e * e;
+        }
+        out.x[count] = p[0];
+        out.y[count] = p[1];
+        out.z[count] = p[2];
+        out.vx[count] = s.vx[j];
+        out.vy[count] = s.vy[j];
+        out.vz[count] = s.vz[j];
+        out.radius[count] = s.radius[j];
+        count += d2 <= reach2;
+    }
+#endif
+    out.count = count;
+}
+
+/// Appends to @p out the candidates j of @p c with 0 < |x_i - x_j| < reach (r_i + r_j),
+/// reach = PairForce::cutoff(1), for globule i at (x, y, z) with velocity v and radius r.
+/// Globule i itself (and any globule at exactly its position, whose force is zero) is
+/// left out. @p out has room for them.
+inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z, float vx,
+                             float vy, float vz, float r, float reach2, NeighborBatch& out) {
+    uint32_t count = out.count;
+    float *bx = out.dx.data(), *by = out.dy.data(), *bz = out.dz.data();
+    float *bvx = out.dvx.data(), *bvy = out.dvy.data(), *bvz = out.dvz.data();
+    float* bsum = out.radiusSum.data();
+    const uint32_t end = c.count;
+#if defined(__AVX512F__)
+    const __m512 px = _mm512_set1_ps(x), py = _mm512_set1_ps(y), pz = _mm512_set1_ps(z);
+    const __m512 pvx = _mm512_set1_ps(vx), pvy = _mm512_set1_ps(vy), pvz = _mm512_set1_ps(vz);
+    const __m512 pr = _mm512_set1_ps(r), reach2v = _mm512_set1_ps(reach2);
+    const __m512 zero = _mm512_setzero_ps();
+    for (uint32_t j = 0; j < end; j += 16) {
+        // The padding past count is readable: plain loads, and a masked test.
+        const uint32_t left = end - j;
+        const __mmask16 live = left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1);
+        const __m512 dx = _mm512_sub_ps(px, _mm512_loadu_ps(c.x.data() + j));
+        const __m512 dy = _mm512_sub_ps(py, _mm512_loadu_ps(c.y.data() + j));
+        const __m512 dz = _mm512_sub_ps(pz, _mm512_loadu_ps(c.z.data() + j));
+        const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
+        const __m512 sum = _mm512_add_ps(pr, _mm512_loadu_ps(c.radius.data() + j));
+        const __m512 limit = _mm512_mul_ps(_mm512_mul_ps(sum, sum), reach2v);
+        const __mmask16 near = _mm512_mask_cmp_ps_mask(live, d2, limit, _CMP_LT_OQ) &
+                               _mm512_cmp_ps_mask(d2, zero, _CMP_GT_OQ);
+        // No early-out when no lane is near: that branch is unpredictable, and slower.
+        const auto keep = [&](float* to, __m512 v) {
+            _mm512_storeu_ps(to + count, _mm512_maskz_compress_ps(near, v));
+        };
+        keep(bx, dx);
+        keep(by, dy);
+        keep(bz, dz);
+        keep(bvx, _mm512_sub_ps(pvx, _mm512_loadu_ps(c.vx.data() + j)));
+        keep(bvy, _mm512_sub_ps(pvy, _mm512_loadu_ps(c.vy.data() + j)));
+        keep(bvz, _mm512_sub_ps(pvz, _mm512_loadu_ps(c.vz.data() + j)));
+        keep(bsum, sum);
+        count += uint32_t(__builtin_popcount(near));
+    }
+#else
+    for (uint32_t j = 0; j < end; ++j) {
+        const float dx = x - c.x[j], dy = y - c.y[j], dz = z - c.z[j];
         const float d2 = dx * dx + dy * dy + dz * dz;
-        const float sum = r + s.radius[j];
-        to[count] = int32_t(j);
+        const float sum = r + c.radius[j];
+        bx[count] = dx;
+        by[count] = dy;
+        bz[count] = dz;
+        bvx[count] = vx - c.vx[j];
+        bvy[count] = vy - c.vy[j];
+        bvz[count] = vz - c.vz[j];
+        bsum[count] = sum;
         count += d2 < sum * sum * reach2 && d2 > 0;
     }
 #endif
@@ -91,15 +188,15 @@ inline float radialTerm(const PairForce& p, float invD, float distance) {
     }
 }
 
-/// Adds to (fx, fy, fz) the force of eq. (2) on globule (x, y, z, v, r) from every
-/// neighbour in @p batch.
+/// Adds to (fx, fy, fz) the force of eq. (2) from every neighbour in @p batch.
 template <int M, int N>
-inline void sumBatch(const PairForce& p, const GlobuleArrays& s, const NeighborBatch& batch,
-                     float x, float y, float z, float vx, float vy, float vz, float r,
-                     float& fx, float& fy, float& fz) {
+inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, float& fy,
+                     float& fz) {
     const float invCr2 = 1.0f / (p.cr * p.cr), invCd2 = 1.0f / (p.cd * p.cd);
     const float minFraction2 = kMinDistanceFraction * kMinDistanceFraction;
-    const int32_t* index = batch.index.data();
+    const float *bx = batch.dx.data(), *by = batch.dy.data(), *bz = batch.dz.data();
+    const float *bvx = batch.dvx.data(), *bvy = batch.dvy.data(), *bvz = batch.dvz.data();
+    const float* bsum = batch.radiusSum.data();
     const uint32_t count = batch.count;
 #if defined(__AVX512F__)
     if constexpr (M > 0 && N > 0) {
@@ -109,21 +206,14 @@ inline void sumBatch(const PairForce& p, const GlobuleArrays& s, const NeighborB
         const __m512 cr2 = _mm512_set1_ps(invCr2), cd2 = _mm512_set1_ps(invCd2);
         const __m512 b1 = _mm512_set1_ps(p.b1), b2 = _mm512_set1_ps(p.b2);
         const __m512 minF2 = _mm512_set1_ps(minFraction2);
-        const __m512 px = _mm512_set1_ps(x), py = _mm512_set1_ps(y), pz = _mm512_set1_ps(z);
-        const __m512 pvx = _mm512_set1_ps(vx), pvy = _mm512_set1_ps(vy), pvz = _mm512_set1_ps(vz);
-        const __m512 pr = _mm512_set1_ps(r);
         __m512 ax = zero, ay = zero, az = zero;
         for (uint32_t k = 0; k < count; k += 16) {
             const uint32_t left = count - k;
             const __mmask16 live = left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1);
-            const __m512i j = _mm512_maskz_loadu_epi32(live, index + k);
-            const auto gather = [&](const float* a) {
-                return _mm512_mask_i32gather_ps(zero, live, j, a, 4);
-            };
-            const __m512 dx = _mm512_sub_ps(px, gather(s.x));
-            const __m512 dy = _mm512_sub_ps(py, gather(s.y));
-            const __m512 dz = _mm512_sub_ps(pz, gather(s.z));
-            const __m512 sum = _mm512_add_ps(pr, gather(s.radius));
+            const __m512 dx = _mm512_maskz_loadu_ps(live, bx + k);
+            const __m512 dy = _mm512_maskz_loadu_ps(live, by + k);
+            const __m512 dz = _mm512_maskz_loadu_ps(live, bz + k);
+            const __m512 sum = _mm512_mask_loadu_ps(one, live, bsum + k);
             const __m512 sum2 = _mm512_mul_ps(sum, sum);
             __m512 invSum2 = _mm512_rcp14_ps(sum2);  // one Newton step: ~full precision
             invSum2 = _mm512_mul_ps(invSum2, _mm512_fnmadd_ps(sum2, invSum2, two));
@@ -140,9 +230,9 @@ inline void sumBatch(const PairForce& p, const GlobuleArrays& s, const NeighborB
             for (int e = 1; e < N; ++e) powN = _mm512_mul_ps(powN, invD);
             const __m512 radial = _mm512_fmsub_ps(b1, powM, _mm512_mul_ps(b2, powN));
             const __m512 vDotP = _mm512_fmadd_ps(
-                _mm512_sub_ps(pvz, gather(s.vz)), dz,
-                _mm512_fmadd_ps(_mm512_sub_ps(pvy, gather(s.vy)), dy,
-                                _mm512_mul_ps(_mm512_sub_ps(pvx, gather(s.vx)), dx)));
+                _mm512_maskz_loadu_ps(live, bvz + k), dz,
+                _mm512_fmadd_ps(_mm512_maskz_loadu_ps(live, bvy + k), dy,
+                                _mm512_mul_ps(_mm512_maskz_loadu_ps(live, bvx + k), dx)));
             const __m512 drag = _mm512_mul_ps(_mm512_mul_ps(windowD, vDotP),
                                               _mm512_mul_ps(invD, invD));
             const __m512 scale = _mm512_fmsub_ps(windowR, radial, drag);
@@ -158,9 +248,8 @@ inline void sumBatch(const PairForce& p, const GlobuleArrays& s, const NeighborB
 #endif
     float ax = 0, ay = 0, az = 0;
     for (uint32_t k = 0; k < count; ++k) {
-        const int32_t j = index[k];
-        const float dx = x - s.x[j], dy = y - s.y[j], dz = z - s.z[j];
-        const float sum = r + s.radius[j];
+        const float dx = bx[k], dy = by[k], dz = bz[k];
+        const float sum = bsum[k];
         const float invSum2 = 1.0f / (sum * sum);
         const float d2 = dx * dx + dy * dy + dz * dz;
         const float safeD2 = std::max(d2, minFraction2 * sum * sum);
@@ -168,7 +257,7 @@ inline void sumBatch(const PairForce& p, const GlobuleArrays& s, const NeighborB
         const float invD = 1.0f / distance;
         const float windowR = std::max(0.0f, 1.0f - d2 * invSum2 * invCr2);
         const float windowD = std::max(0.0f, 1.0f - d2 * invSum2 * invCd2);
-        const float vDotP = (vx - s.vx[j]) * dx + (vy - s.vy[j]) * dy + (vz - s.vz[j]) * dz;
+        const float vDotP = bvx[k] * dx + bvy[k] * dy + bvz[k] * dz;
         const float scale =
             windowR * radialTerm<M, N>(p, invD, distance) - windowD * vDotP * (invD * invD);
         ax += scale * dx;
