@@ -37,8 +37,8 @@ void pixelSpan(float lo, float hi, int count, int& first, int& last) {
 
 }  // namespace
 
-std::vector<ScreenDisc> cameraDiscs(const Globules& g, const FrameUniforms& f) {
-    std::vector<ScreenDisc> discs(g.size());
+void cameraDiscs(const Globules& g, const FrameUniforms& f, std::vector<ScreenDisc>& discs) {
+    discs.resize(g.size());
     const Mat4& view = f.view;
     const double pixel = f.pixelAngle;  // image-plane units per pixel at unit focal length
     // A ray Delta pixels from another is at most Delta * pixel radians from it (the map
@@ -50,6 +50,7 @@ std::vector<ScreenDisc> cameraDiscs(const Globules& g, const FrameUniforms& f) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.size(), kGrain), [&](auto range) {
         for (std::size_t i = range.begin(); i < range.end(); ++i) {
             ScreenDisc& d = discs[i];
+            d = ScreenDisc{};
             const float x = g.px[i], y = g.py[i], z = g.pz[i], r = g.radius[i];
             if (!finite(x, y, z, r)) continue;  // never drawn: the shaders skip it
             const Vec3 v{view(0, 0) * x + view(0, 1) * y + view(0, 2) * z + view(0, 3),
@@ -84,11 +85,10 @@ std::vector<ScreenDisc> cameraDiscs(const Globules& g, const FrameUniforms& f) {
             d.coreDepth = float(depth + b - std::sqrt(std::max(r * r - b * b, 0.0)) * cosMin);
         }
     });
-    return discs;
 }
 
-std::vector<ScreenDisc> lightDiscs(const Globules& g, const FrameUniforms& f) {
-    std::vector<ScreenDisc> discs(g.size());
+void lightDiscs(const Globules& g, const FrameUniforms& f, std::vector<ScreenDisc>& discs) {
+    discs.resize(g.size());
     const Mat4& m = f.lightViewProj;
     const Vec3 toward = f.lightToward.front();
     // Normalised depth (-1..1) per world unit towards the light: negative.
@@ -98,6 +98,7 @@ std::vector<ScreenDisc> lightDiscs(const Globules& g, const FrameUniforms& f) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.size(), kGrain), [&](auto range) {
         for (std::size_t i = range.begin(); i < range.end(); ++i) {
             ScreenDisc& d = discs[i];
+            d = ScreenDisc{};
             const float x = g.px[i], y = g.py[i], z = g.pz[i], r = g.radius[i];
             if (!finite(x, y, z, r)) continue;
             const double cx = m(0, 0) * x + m(0, 1) * y + m(0, 2) * z + m(0, 3);
@@ -115,14 +116,21 @@ std::vector<ScreenDisc> lightDiscs(const Globules& g, const FrameUniforms& f) {
             d.coreDepth = float(cz - radiusDepth * std::sqrt(1 - kLightCore * kLightCore));
         }
     });
-    return discs;
 }
 
 std::vector<uint32_t> unoccluded(const std::vector<ScreenDisc>& discs, int width, int height) {
+    std::vector<uint32_t> indices;
+    OcclusionCuller().cull(discs, width, height, indices);
+    return indices;
+}
+
+void OcclusionCuller::cull(const std::vector<ScreenDisc>& discs, int width, int height,
+                           std::vector<uint32_t>& indices) {
     // Per pixel, the nearest depth behind which all its samples are covered by some core.
     // Rows are drawn in bands, in parallel; each band gathers the discs whose cores reach
     // it (a counting sort by band), so each pixel is written by one thread only.
-    std::vector<float> grid(std::size_t(width) * height, kInfinity);
+    std::vector<float>& grid = mGrid;
+    grid.assign(std::size_t(width) * height, kInfinity);
     const int bands = (height + kBandRows - 1) / kBandRows;
     auto bandSpan = [&](const ScreenDisc& d, int& b0, int& b1) {
         int y0, y1;
@@ -131,7 +139,8 @@ std::vector<uint32_t> unoccluded(const std::vector<ScreenDisc>& discs, int width
         b1 = y1 < y0 ? b0 - 1 : y1 / kBandRows;
     };
     auto occludes = [](const ScreenDisc& d) { return d.coreRadius > 0 && std::isfinite(d.half); };
-    std::vector<std::size_t> start(bands + 1, 0);
+    std::vector<std::size_t>& start = mStart;
+    start.assign(bands + 1, 0);
     for (const ScreenDisc& d : discs) {
         if (!occludes(d)) continue;
         int b0, b1;
@@ -140,12 +149,11 @@ std::vector<uint32_t> unoccluded(const std::vector<ScreenDisc>& discs, int width
     }
     for (int b = 0; b < bands; ++b) start[b + 1] += start[b];
     // Copies, not indices: the raster then reads each band's cores in sequence.
-    struct Core {
-        float x, y, radius, depth;
-    };
-    std::vector<Core> byBand(start[bands]);
+    std::vector<Core>& byBand = mCores;
+    byBand.resize(start[bands]);
     {
-        std::vector<std::size_t> next(start.begin(), start.end() - 1);
+        std::vector<std::size_t>& next = mNext;
+        next.assign(start.begin(), start.end() - 1);
         for (const ScreenDisc& d : discs) {
             if (!occludes(d)) continue;
             int b0, b1;
@@ -182,7 +190,8 @@ std::vector<uint32_t> unoccluded(const std::vector<ScreenDisc>& discs, int width
     // handful of these, without reading every pixel they reach.
     const int blockColumns = (width + kBlock - 1) / kBlock;
     const int blockRows = (height + kBlock - 1) / kBlock;
-    std::vector<float> blockFar(std::size_t(blockColumns) * blockRows, -kInfinity);
+    std::vector<float>& blockFar = mBlockFar;
+    blockFar.assign(std::size_t(blockColumns) * blockRows, -kInfinity);
     tbb::parallel_for(tbb::blocked_range<int>(0, blockRows, 1), [&](auto range) {
         for (int by = range.begin(); by < range.end(); ++by) {
             for (int py = by * kBlock; py < std::min(height, (by + 1) * kBlock); ++py) {
@@ -194,7 +203,8 @@ std::vector<uint32_t> unoccluded(const std::vector<ScreenDisc>& discs, int width
             }
         }
     });
-    std::vector<uint8_t> visible(discs.size(), 0);
+    std::vector<uint8_t>& visible = mVisible;
+    visible.assign(discs.size(), 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, discs.size(), kGrain), [&](auto range) {
         for (std::size_t i = range.begin(); i < range.end(); ++i) {
             const ScreenDisc& d = discs[i];
@@ -235,12 +245,10 @@ std::vector<uint32_t> unoccluded(const std::vector<ScreenDisc>& discs, int width
             visible[i] = seen ? 1 : 0;
         }
     });
-    std::vector<uint32_t> indices;
-    indices.reserve(discs.size() / 4);
+    indices.clear();
     for (std::size_t i = 0; i < discs.size(); ++i) {
         if (visible[i]) indices.push_back(uint32_t(i));
     }
-    return indices;
 }
 
 }  // namespace globular::detail

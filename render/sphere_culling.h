@@ -34,15 +34,36 @@ struct ScreenDisc {
     float coreDepth = 0;  ///< farthest depth it writes inside that circle
 };
 
-/// The spheres in the camera's view of @p frame (sprites, multisampled or not).
-std::vector<ScreenDisc> cameraDiscs(const Globules& globules, const FrameUniforms& frame);
+/// The spheres in the camera's view of @p frame (sprites, multisampled or not), into
+/// @p discs (one per globule; its memory is reused from frame to frame).
+void cameraDiscs(const Globules& globules, const FrameUniforms& frame,
+                 std::vector<ScreenDisc>& discs);
 
 /// The spheres in the key light's orthographic view (the shadow map, @p frame's size).
-std::vector<ScreenDisc> lightDiscs(const Globules& globules, const FrameUniforms& frame);
+void lightDiscs(const Globules& globules, const FrameUniforms& frame,
+                std::vector<ScreenDisc>& discs);
 
-/// Indices, ascending, of the discs that may be visible in a @p width x @p height view:
-/// all but those off the view and those behind other discs' cores everywhere they reach.
-/// Deterministic for any thread count.
+/// Culls discs in one view; keeps its working memory (a depth grid of the view's size,
+/// tens of megabytes for a million discs) from frame to frame.
+class OcclusionCuller {
+  public:
+    /// Sets @p indices to those, ascending, of the discs that may be visible in a
+    /// @p width x @p height view: all but those off the view and those behind other
+    /// discs' cores everywhere they reach. Deterministic for any thread count.
+    void cull(const std::vector<ScreenDisc>& discs, int width, int height,
+              std::vector<uint32_t>& indices);
+
+  private:
+    struct Core {
+        float x, y, radius, depth;
+    };
+    std::vector<float> mGrid, mBlockFar;
+    std::vector<std::size_t> mStart, mNext;
+    std::vector<Core> mCores;
+    std::vector<uint8_t> mVisible;
+};
+
+/// OcclusionCuller::cull with memory of its own.
 std::vector<uint32_t> unoccluded(const std::vector<ScreenDisc>& discs, int width, int height);
 
 }  // namespace globular::detail

@@ -1,12 +1,13 @@
 #include "sphere_pass.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "errors.h"
 #include "shaders.h"
-#include "sphere_culling.h"
 
 namespace globular::detail {
 
@@ -128,8 +129,20 @@ void SpherePass::upload(const Globules& g, bool withSpeed, const FrameUniforms& 
     // The sprites that may be seen, in the camera's view and the light's (sphere_culling.h);
     // the few spheres too big for a sprite in either; and the screen rectangle of every
     // sprite drawn, for the shading tiles (hidden ones lie within tiles of those drawn).
-    const std::vector<ScreenDisc> discs = cameraDiscs(g, f);
-    mVisible = mCulling ? unoccluded(discs, f.width, f.height) : std::vector<uint32_t>{};
+    // The camera's view and the light's are culled at the same time.
+    const bool shadowCulling = mCulling && f.shadowed;
+    tbb::parallel_invoke(
+        [&] {
+            cameraDiscs(g, f, mDiscs);
+            if (mCulling) mCuller.cull(mDiscs, f.width, f.height, mVisible);
+            if (!mCulling) mVisible.clear();
+        },
+        [&] {
+            if (!shadowCulling) return;
+            lightDiscs(g, f, mLightDiscs);
+            mLightCuller.cull(mLightDiscs, f.shadowMapSize, f.shadowMapSize, mShadowVisible);
+        });
+    const std::vector<ScreenDisc>& discs = mDiscs;
     std::vector<float> squares, rects;
     std::vector<uint32_t> ids;
     const float limit = mMaxSprite - kSpriteMargin;
@@ -157,9 +170,7 @@ void SpherePass::upload(const Globules& g, bool withSpeed, const FrameUniforms& 
             for (const ScreenDisc& d : discs) addRect(d);
         }
     }
-    mShadowVisible = mCulling && f.shadowed
-                         ? unoccluded(lightDiscs(g, f), f.shadowMapSize, f.shadowMapSize)
-                         : std::vector<uint32_t>{};
+    if (!shadowCulling) mShadowVisible.clear();
     if (mCulling) {
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mVisibleIndices.id());
         glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mVisible.size() * sizeof(uint32_t)),

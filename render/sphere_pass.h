@@ -24,6 +24,7 @@
 #include "frame_uniforms.h"
 #include "gl_objects.h"
 #include "globules.h"
+#include "sphere_culling.h"
 
 namespace globular::detail {
 
@@ -66,6 +67,8 @@ class SpherePass {
     gl::Buffer mVisibleIndices, mShadowIndices;  // element arrays of the culled sprites
     bool mCulling = true;
     std::vector<uint32_t> mVisible, mShadowVisible;  // globule indices, ascending
+    std::vector<ScreenDisc> mDiscs, mLightDiscs;     // kept for their memory
+    OcclusionCuller mCuller, mLightCuller;
     std::size_t mCount = 0, mSquareCount = 0, mTileVertices = 0;
 };
 
