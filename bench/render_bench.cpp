@@ -1,10 +1,11 @@
 // Render benchmarks: time per frame at 1280x720 and 1920x1080 for 1e3, 1e5 and 1e6 sphere
 // globules (renderBenchPour) and for meshes of 1e5 and 1e6 triangles (renderBenchBlob),
-// plus the PNG encoding of a frame. A frame is upload, shadow map, drawing, resolve,
-// read-back and sRGB encoding: everything runRenderStage does per frame but reading the
-// cache and writing the PNG. The GL context and shaders are made before timing.
+// plus the PNG encoding of a frame, and 1e6 spheres without occlusion culling. A frame is
+// upload, culling, shadow map, drawing, resolve, read-back and sRGB encoding: everything
+// runRenderStage does per frame but reading the cache and writing the PNG. The GL context
+// and shaders are made before timing.
 // Not part of ctest; the 1e6 cases take seconds each:
-//   build/bench/render_bench --benchmark_filter=Spheres/1000000
+//   build/bench/render_bench --benchmark_filter=Spheres/n:1000000
 #include <benchmark/benchmark.h>
 
 #include <ctime>
@@ -55,18 +56,29 @@ FrameSetup setupFor(const SceneExtent& extent, int width, int height, const char
     return s;
 }
 
-void BM_Spheres(benchmark::State& state) {
+void spheres(benchmark::State& state, bool culling) {
     const int height = int(state.range(1)), width = height * 16 / 9;
     const Globules g = renderBenchPour(std::size_t(state.range(0)));
     SceneExtent extent;
     extent.addFrame(g);
     const FrameSetup setup = setupFor(extent, width, height, "speed");
     Renderer renderer(width, height, int(state.range(2)));
+    renderer.setOcclusionCulling(culling);
     renderer.drawSpheres(g, setup);  // warm-up: shaders are compiled on first use
     timeFrames(state, [&] { benchmark::DoNotOptimize(renderer.drawSpheres(g, setup)); });
     state.counters["globules"] = double(g.size());
 }
+
+void BM_Spheres(benchmark::State& state) { spheres(state, true); }
 BENCHMARK(BM_Spheres)->Apply([](auto* b) { sizes(b, {1000, 100000, 1000000}); });
+
+// Without occlusion culling (the same image): what culling saves for a million globules.
+void BM_SpheresUnculled(benchmark::State& state) { spheres(state, false); }
+BENCHMARK(BM_SpheresUnculled)
+    ->Args({1000000, 1080, 4})
+    ->ArgNames({"n", "height", "samples"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 void BM_Mesh(benchmark::State& state) {
     const int height = int(state.range(1)), width = height * 16 / 9;
