@@ -71,6 +71,7 @@ void sumRange(const PairForce& pair, const NeighborGrid& grid, const Globules& s
     // conservative under rounding (the pair test decides).
     const float groupReach = grid.cellSize() * 1.0001f;
     std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> runs;
+    NeighborGrid::RunCursor cursor;
     GroupCandidates candidates;
     NeighborBatch batch;
     for (std::size_t first = begin; first < end;) {
@@ -85,7 +86,8 @@ void sumRange(const PairForce& pair, const NeighborGrid& grid, const Globules& s
                 hi[a] = std::max(hi[a], p[a]);
             }
         }
-        const int runCount = grid.neighborRuns(s.px[first], s.py[first], s.pz[first], runs);
+        const int runCount =
+            grid.neighborRuns(s.px[first], s.py[first], s.pz[first], cursor, runs);
         std::size_t total = 0;
         for (int b = 0; b < runCount; ++b) total += runs[b].second - runs[b].first;
         candidates.reserve(total);

@@ -1,10 +1,36 @@
 #include "neighbor_grid.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 
 #include "errors.h"
 
 namespace globular {
+
+namespace {
+
+/// Sorts @p keys (all distinct). Between steps few globules change cell, so a bucket is
+/// usually sorted but for a few: insertion sort, which is linear then; std::sort when
+/// it meets much disorder (the first step, or a scattered system).
+void sortNearlySorted(std::vector<std::pair<int32_t, uint32_t>>& keys) {
+    std::size_t moves = 0;
+    const std::size_t budget = 8 * keys.size() + 64;
+    for (std::size_t i = 1; i < keys.size(); ++i) {
+        const auto key = keys[i];
+        std::size_t j = i;
+        for (; j > 0 && key < keys[j - 1]; --j) keys[j] = keys[j - 1];
+        keys[j] = key;
+        moves += i - j;
+        if (moves > budget) {
+            std::sort(keys.begin(), keys.end());
+            return;
+        }
+    }
+}
+
+}  // namespace
 
 uint32_t NeighborGrid::rowBucket(int32_t cy, int32_t cz) const {
     // Teschner et al. 2003 spatial hash primes.
@@ -37,43 +63,69 @@ void NeighborGrid::build(const float* px, const float* py, const float* pz, std:
     std::copy_backward(mBucketStart.begin(), mBucketStart.end() - 1, mBucketStart.end());
     mBucketStart[0] = 0;
 
-    // Within a bucket, order by x cell (ties by index: deterministic).
-    std::vector<std::pair<int32_t, uint32_t>> keyed;
+    // Within a bucket, order by x cell (ties by index: deterministic). Buckets are
+    // independent: sorted in parallel.
     mSortedCellX.resize(n);
-    for (uint32_t b = 0; b < buckets; ++b) {
-        const uint32_t begin = mBucketStart[b], end = mBucketStart[b + 1];
-        if (end - begin > 1) {
-            keyed.clear();
-            for (uint32_t k = begin; k < end; ++k) {
-                keyed.emplace_back(cellCoordX(px[mSorted[k]]), mSorted[k]);
-            }
-            std::sort(keyed.begin(), keyed.end());
-            for (uint32_t k = begin; k < end; ++k) {
-                mSortedCellX[k] = keyed[k - begin].first;
-                mSorted[k] = keyed[k - begin].second;
-            }
-        } else if (end == begin + 1) {
-            mSortedCellX[begin] = cellCoordX(px[mSorted[begin]]);
-        }
-    }
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, buckets, 2048),
+                      [&](const tbb::blocked_range<uint32_t>& range) {
+                          std::vector<std::pair<int32_t, uint32_t>> keyed;
+                          for (uint32_t b = range.begin(); b != range.end(); ++b) {
+                              const uint32_t begin = mBucketStart[b], end = mBucketStart[b + 1];
+                              if (begin == end) continue;
+                              keyed.clear();
+                              for (uint32_t k = begin; k < end; ++k) {
+                                  keyed.emplace_back(cellCoordX(px[mSorted[k]]), mSorted[k]);
+                              }
+                              sortNearlySorted(keyed);
+                              for (uint32_t k = begin; k < end; ++k) {
+                                  mSortedCellX[k] = keyed[k - begin].first;
+                                  mSorted[k] = keyed[k - begin].second;
+                              }
+                          }
+                      });
 }
 
 int NeighborGrid::neighborRuns(float x, float y, float z, std::array<Run, kMaxRuns>& out) const {
+    RunCursor cursor;
+    return neighborRuns(x, y, z, cursor, out);
+}
+
+int NeighborGrid::neighborRuns(float x, float y, float z, RunCursor& cursor,
+                               std::array<Run, kMaxRuns>& out) const {
     const int32_t cx = cellCoordX(x), cy = cellCoord(y), cz = cellCoord(z);
-    std::array<uint32_t, 9> buckets;
-    int count = 0;
-    for (int32_t dz = -1; dz <= 1; ++dz)
-        for (int32_t dy = -1; dy <= 1; ++dy) buckets[count++] = rowBucket(cy + dy, cz + dz);
-    std::sort(buckets.begin(), buckets.end());
-    count = int(std::unique(buckets.begin(), buckets.end()) - buckets.begin());
-    int runs = 0;
     const int32_t* cells = mSortedCellX.data();
-    for (int b = 0; b < count; ++b) {
-        const int32_t* first = cells + mBucketStart[buckets[b]];
-        const int32_t* last = cells + mBucketStart[buckets[b] + 1];
-        const int32_t* lo = std::lower_bound(first, last, cx - kXSplit);
-        const int32_t* hi = std::upper_bound(lo, last, cx + kXSplit);
-        if (lo != hi) out[runs++] = {uint32_t(lo - cells), uint32_t(hi - cells)};
+    RunCursor& c = cursor;
+    if (c.valid && c.cy == cy && c.cz == cz && cx >= c.cx) {
+        // Further along the same row of cells: the runs only move forward.
+        for (int b = 0; b < c.count; ++b) {
+            const uint32_t last = mBucketStart[c.bucket[b] + 1];
+            uint32_t lo = c.run[b].first, hi = c.run[b].second;
+            while (lo < last && cells[lo] < cx - kXSplit) ++lo;
+            if (hi < lo) hi = lo;
+            while (hi < last && cells[hi] <= cx + kXSplit) ++hi;
+            c.run[b] = {lo, hi};
+        }
+    } else {
+        int count = 0;
+        for (int32_t dz = -1; dz <= 1; ++dz)
+            for (int32_t dy = -1; dy <= 1; ++dy) c.bucket[count++] = rowBucket(cy + dy, cz + dz);
+        std::sort(c.bucket.begin(), c.bucket.end());
+        c.count = int(std::unique(c.bucket.begin(), c.bucket.end()) - c.bucket.begin());
+        for (int b = 0; b < c.count; ++b) {
+            const int32_t* first = cells + mBucketStart[c.bucket[b]];
+            const int32_t* last = cells + mBucketStart[c.bucket[b] + 1];
+            const int32_t* lo = std::lower_bound(first, last, cx - kXSplit);
+            const int32_t* hi = std::upper_bound(lo, last, cx + kXSplit);
+            c.run[b] = {uint32_t(lo - cells), uint32_t(hi - cells)};
+        }
+        c.valid = true;
+        c.cy = cy;
+        c.cz = cz;
+    }
+    c.cx = cx;
+    int runs = 0;
+    for (int b = 0; b < c.count; ++b) {
+        if (c.run[b].first != c.run[b].second) out[runs++] = c.run[b];
     }
     return runs;
 }

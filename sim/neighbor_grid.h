@@ -37,6 +37,20 @@ public:
     /// each point at most once. @return the number of runs.
     int neighborRuns(float x, float y, float z, std::array<Run, kMaxRuns>& out) const;
 
+    /// The last query's rows and runs. A query further along the same row of cells (the
+    /// order in which the force loop visits cells) advances the runs instead of hashing
+    /// and searching again.
+    struct RunCursor {
+        bool valid = false;
+        int32_t cx = 0, cy = 0, cz = 0;
+        int count = 0;
+        std::array<uint32_t, 9> bucket{};
+        std::array<Run, 9> run{};
+    };
+    /// neighborRuns, the same result, faster for queries in grid order.
+    int neighborRuns(float x, float y, float z, RunCursor& cursor,
+                     std::array<Run, kMaxRuns>& out) const;
+
     /// Calls visit(j) for every point j in the cells within one cell of (x, y, z), each
     /// exactly once, in an order that depends only on the point set (not on threads).
     template <typename Visit>

@@ -77,6 +77,21 @@ TEST(Forces, NeighborGridVisitsEveryCloseGlobuleOnce) {
     }
 }
 
+TEST(Forces, RunCursorGivesTheRunsOfAFreshQuery) {
+    for (const double extent : {6.0, 40.0}) {  // dense, and sparse with hash collisions
+        const Globules g = randomCloud(3000, extent, 5);
+        NeighborGrid grid;
+        grid.build(g.px.data(), g.py.data(), g.pz.data(), g.size(), 3.0f);
+        NeighborGrid::RunCursor cursor;
+        std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> fresh, advanced;
+        for (const uint32_t i : grid.sortedOrder()) {  // the force loop's order
+            const int n = grid.neighborRuns(g.px[i], g.py[i], g.pz[i], fresh);
+            ASSERT_EQ(grid.neighborRuns(g.px[i], g.py[i], g.pz[i], cursor, advanced), n);
+            for (int r = 0; r < n; ++r) ASSERT_EQ(advanced[r], fresh[r]) << "globule " << i;
+        }
+    }
+}
+
 TEST(Forces, GroundHoldsARestingGlobuleAtTheExpectedDepth) {
     for (const char* contact : {"center", "surface"}) {
         GroundSettings ground;
