@@ -3,7 +3,7 @@
 //   1. collectGroupCandidates, once per grid cell: the globules of the cell's runs within
 //      reach of the bounding box of the cell's members, copied into one short array;
 //   2. collectNeighbors, per member: those candidates within the pair's reach, compacted
-//      into a NeighborBatch of relative positions and velocities;
+//      into a NeighborBatch of relative positions and V.P;
 //   3. sumBatch, per member: eq. (2)-(5) summed over the batch, every lane useful.
 // The grid hands about five candidates for each one within reach, so testing them cheaply
 // and evaluating the force only for the rest is what makes the loop fast. With AVX-512
@@ -28,15 +28,16 @@ struct GlobuleArrays {
     const float *x, *y, *z, *vx, *vy, *vz, *radius;
 };
 
-/// One globule's neighbours within reach: P = x_i - x_j, V = v_i - v_j and r_i + r_j.
+/// One globule's neighbours within reach: P = x_i - x_j, V.P with V = v_i - v_j (all the
+/// drag needs of the velocities: one array instead of three) and r_i + r_j.
 struct NeighborBatch {
     static constexpr uint32_t kPadding = 16;  ///< vector stores write up to 16 past count
-    std::vector<float> dx, dy, dz, dvx, dvy, dvz, radiusSum;
+    std::vector<float> dx, dy, dz, vDotP, radiusSum;
     uint32_t count = 0;
 
     /// Room for @p candidates entries.
     void reserve(std::size_t candidates) {
-        for (auto* a : {&dx, &dy, &dz, &dvx, &dvy, &dvz, &radiusSum}) {
+        for (auto* a : {&dx, &dy, &dz, &vDotP, &radiusSum}) {
             if (a->size() < candidates + kPadding) a->resize(candidates + kPadding);
         }
     }
@@ -124,7 +125,7 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
                              float vy, float vz, float r, float reach2, NeighborBatch& out) {
     uint32_t count = out.count;
     float *bx = out.dx.data(), *by = out.dy.data(), *bz = out.dz.data();
-    float *bvx = out.dvx.data(), *bvy = out.dvy.data(), *bvz = out.dvz.data();
+    float* bvp = out.vDotP.data();
     float* bsum = out.radiusSum.data();
     const uint32_t end = c.count;
 #if defined(__AVX512F__)
@@ -151,9 +152,10 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
         keep(bx, dx);
         keep(by, dy);
         keep(bz, dz);
-        keep(bvx, _mm512_sub_ps(pvx, _mm512_loadu_ps(c.vx.data() + j)));
-        keep(bvy, _mm512_sub_ps(pvy, _mm512_loadu_ps(c.vy.data() + j)));
-        keep(bvz, _mm512_sub_ps(pvz, _mm512_loadu_ps(c.vz.data() + j)));
+        const __m512 dvx = _mm512_sub_ps(pvx, _mm512_loadu_ps(c.vx.data() + j));
+        const __m512 dvy = _mm512_sub_ps(pvy, _mm512_loadu_ps(c.vy.data() + j));
+        const __m512 dvz = _mm512_sub_ps(pvz, _mm512_loadu_ps(c.vz.data() + j));
+        keep(bvp, _mm512_fmadd_ps(dvz, dz, _mm512_fmadd_ps(dvy, dy, _mm512_mul_ps(dvx, dx))));
         keep(bsum, sum);
         count += uint32_t(__builtin_popcount(near));
     }
@@ -165,9 +167,7 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
         bx[count] = dx;
         by[count] = dy;
         bz[count] = dz;
-        bvx[count] = vx - c.vx[j];
-        bvy[count] = vy - c.vy[j];
-        bvz[count] = vz - c.vz[j];
+        bvp[count] = (vx - c.vx[j]) * dx + (vy - c.vy[j]) * dy + (vz - c.vz[j]) * dz;
         bsum[count] = sum;
         count += d2 < sum * sum * reach2 && d2 > 0;
     }
@@ -195,7 +195,7 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
     const float invCr2 = 1.0f / (p.cr * p.cr), invCd2 = 1.0f / (p.cd * p.cd);
     const float minFraction2 = kMinDistanceFraction * kMinDistanceFraction;
     const float *bx = batch.dx.data(), *by = batch.dy.data(), *bz = batch.dz.data();
-    const float *bvx = batch.dvx.data(), *bvy = batch.dvy.data(), *bvz = batch.dvz.data();
+    const float* bvp = batch.vDotP.data();
     const float* bsum = batch.radiusSum.data();
     const uint32_t count = batch.count;
 #if defined(__AVX512F__)
@@ -229,10 +229,7 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
             for (int e = 1; e < M; ++e) powM = _mm512_mul_ps(powM, invD);
             for (int e = 1; e < N; ++e) powN = _mm512_mul_ps(powN, invD);
             const __m512 radial = _mm512_fmsub_ps(b1, powM, _mm512_mul_ps(b2, powN));
-            const __m512 vDotP = _mm512_fmadd_ps(
-                _mm512_maskz_loadu_ps(live, bvz + k), dz,
-                _mm512_fmadd_ps(_mm512_maskz_loadu_ps(live, bvy + k), dy,
-                                _mm512_mul_ps(_mm512_maskz_loadu_ps(live, bvx + k), dx)));
+            const __m512 vDotP = _mm512_maskz_loadu_ps(live, bvp + k);
             const __m512 drag = _mm512_mul_ps(_mm512_mul_ps(windowD, vDotP),
                                               _mm512_mul_ps(invD, invD));
             const __m512 scale = _mm512_fmsub_ps(windowR, radial, drag);
@@ -257,7 +254,7 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
         const float invD = 1.0f / distance;
         const float windowR = std::max(0.0f, 1.0f - d2 * invSum2 * invCr2);
         const float windowD = std::max(0.0f, 1.0f - d2 * invSum2 * invCd2);
-        const float vDotP = bvx[k] * dx + bvy[k] * dy + bvz[k] * dz;
+        const float vDotP = bvp[k];
         const float scale =
             windowR * radialTerm<M, N>(p, invD, distance) - windowD * vDotP * (invD * invD);
         ax += scale * dx;
