@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "sphere_pass.h"
 
@@ -15,13 +16,14 @@ namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 constexpr std::size_t kGrain = 4096;
+constexpr double kHalfPi = 0.5 * std::numbers::pi;
 constexpr int kBandRows = 16;  // rows of the depth grid drawn by one task
 constexpr int kBlock = 8;      // pixels per side of a block of the coarse test
 
 // The core reaches out to this fraction of the radius (the miss distance of the eye ray
 // from the centre). Larger covers more pixels but bounds the depth less tightly.
-constexpr double kCameraCore = 0.8;
-constexpr double kLightCore = 0.8;
+constexpr double kCameraCore = 0.9;
+constexpr double kLightCore = 0.9;
 
 bool finite(float x, float y, float z, float r) {
     return std::isfinite(x) && std::isfinite(y) && std::isfinite(z) && std::isfinite(r) && r > 0;
@@ -76,13 +78,20 @@ void cameraDiscs(const Globules& g, const FrameUniforms& f, std::vector<ScreenDi
             const double margin = 4.0 * 0x1p-24 * depth * depth / zNear + 1e-5 * depth;
             d.nearDepth = float(depth - r - margin);
             // Samples within Delta pixels of the centre see rays that pass the centre at
-            // b <= distance * Delta * pixel. With b <= k r the ray hits at a depth at most
-            // depth + k r - sqrt(1 - k^2) r cosMin; with b <= r - 0.6 pixel * distance the
-            // sample is inside the silhouette by more than the half pixel of anti-aliasing,
-            // so alpha-to-coverage covers all of its samples.
+            // b <= distance * Delta * pixel. With b <= r - 0.6 pixel * distance the sample
+            // is inside the silhouette by more than the half pixel of anti-aliasing, so
+            // alpha-to-coverage covers all of its samples. Such a ray, at angle theta from
+            // the view direction, writes a depth of at most (with the centre-to-ray offset
+            // perpendicular to the ray, of length <= b)
+            //   depth + b sin(theta) - sqrt(r^2 - b^2) cos(theta),
+            // and theta is at most the centre's angle plus asin(b / distance).
             const double b = std::min(kCameraCore * r, r - 0.6 * pixel * distance);
             d.coreRadius = float(b / (distance * pixel) - 0.01);
-            d.coreDepth = float(depth + b - std::sqrt(std::max(r * r - b * b, 0.0)) * cosMin);
+            const double theta = std::acos(std::clamp(depth / distance, 0.0, 1.0)) +
+                                 std::asin(std::clamp(b / distance, 0.0, 1.0));
+            const double cosRay = std::max(cosMin, std::cos(std::min(theta, kHalfPi)));
+            d.coreDepth = float(depth + b * std::sqrt(1 - cosRay * cosRay) -
+                                std::sqrt(std::max(r * r - b * b, 0.0)) * cosRay);
         }
     });
 }
