@@ -22,15 +22,19 @@ inline void addPair(const Globules& g, const PairForce& pair, std::size_t i, std
                     g.radius[i] + g.radius[j], f);
 }
 
-float maxRadius(const Globules& g) {
-    if (g.empty()) return 1.0f;
+/// The smallest and largest radius.
+std::pair<float, float> radiusRange(const Globules& g) {
+    if (g.empty()) return {1.0f, 1.0f};
+    using Range = std::pair<float, float>;
     return tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, g.size(), 4096), 0.0f,
-        [&](const tbb::blocked_range<std::size_t>& r, float m) {
-            for (std::size_t i = r.begin(); i != r.end(); ++i) m = std::max(m, g.radius[i]);
+        tbb::blocked_range<std::size_t>(0, g.size(), 4096), Range{g.radius[0], g.radius[0]},
+        [&](const tbb::blocked_range<std::size_t>& r, Range m) {
+            for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                m = {std::min(m.first, g.radius[i]), std::max(m.second, g.radius[i])};
+            }
             return m;
         },
-        [](float a, float b) { return std::max(a, b); });
+        [](Range a, Range b) { return Range{std::min(a.first, b.first), std::max(a.second, b.second)}; });
 }
 
 }  // namespace
@@ -54,7 +58,7 @@ void pairForcesAllPairs(const Globules& g, const PairForce& pair, Accelerations&
 
 void buildGrid(const Globules& g, const PairForce& pair, NeighborGrid& grid) {
     grid.build(g.px.data(), g.py.data(), g.pz.data(), g.size(),
-               pair.cutoff(2.0f * maxRadius(g)));
+               pair.cutoff(2.0f * radiusRange(g).second));
 }
 
 namespace {
@@ -63,7 +67,7 @@ namespace {
 /// that share a cell are consecutive: they are handled as a group with shared candidates.
 template <int M, int N>
 void sumRange(const PairForce& pair, const NeighborGrid& grid, const Globules& s,
-              std::size_t begin, std::size_t end, Accelerations& forces) {
+              bool uniformRadius, std::size_t begin, std::size_t end, Accelerations& forces) {
     const GlobuleArrays arrays{s.px.data(), s.py.data(), s.pz.data(),    s.vx.data(),
                                s.vy.data(), s.vz.data(), s.radius.data()};
     const float reach = pair.cutoff(1.0f), reach2 = reach * reach;
@@ -73,6 +77,7 @@ void sumRange(const PairForce& pair, const NeighborGrid& grid, const Globules& s
     std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> runs;
     NeighborGrid::RunCursor cursor;
     GroupCandidates candidates;
+    candidates.uniformRadius = uniformRadius;
     NeighborBatch batch;
     for (std::size_t first = begin; first < end;) {
         const auto cell = grid.cellOf(s.px[first], s.py[first], s.pz[first]);
@@ -111,8 +116,8 @@ void sumRange(const PairForce& pair, const NeighborGrid& grid, const Globules& s
     }
 }
 
-using SumRange = void (*)(const PairForce&, const NeighborGrid&, const Globules&, std::size_t,
-                          std::size_t, Accelerations&);
+using SumRange = void (*)(const PairForce&, const NeighborGrid&, const Globules&, bool,
+                          std::size_t, std::size_t, Accelerations&);
 
 /// The kernel for the material's exponents: unrolled powers for the pairs the paper
 /// uses, pow() otherwise.
@@ -136,12 +141,14 @@ void pairForcesSorting(Globules& g, const PairForce& pair, NeighborWorkspace& w,
     const std::size_t n = g.size();
     forces.resize(n);
     if (n == 0) return;
-    buildGrid(g, pair, w.grid);
+    const auto [smallest, largest] = radiusRange(g);
+    w.grid.build(g.px.data(), g.py.data(), g.pz.data(), n, pair.cutoff(2.0f * largest));
     g.permute(w.grid.sortedOrder(), w.scratch);
     const SumRange sum = kernelFor(pair);
+    const bool uniformRadius = smallest == largest;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
                       [&](const tbb::blocked_range<std::size_t>& r) {
-                          sum(pair, w.grid, g, r.begin(), r.end(), forces);
+                          sum(pair, w.grid, g, uniformRadius, r.begin(), r.end(), forces);
                       });
 }
 

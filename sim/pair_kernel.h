@@ -33,6 +33,7 @@ struct GlobuleArrays {
 struct NeighborBatch {
     static constexpr uint32_t kPadding = 16;  ///< vector stores write up to 16 past count
     std::vector<float> dx, dy, dz, vDotP, radiusSum;
+    float uniformSum = 0;  ///< r_i + r_j of every neighbour, or 0: see radiusSum
     uint32_t count = 0;
 
     /// Room for @p candidates entries.
@@ -50,6 +51,7 @@ struct NeighborBatch {
 struct GroupCandidates {
     static constexpr uint32_t kPadding = 16;  ///< vector stores write up to 16 past count
     std::vector<float> x, y, z, vx, vy, vz, radius;
+    bool uniformRadius = false;  ///< all globules share one radius: `radius` is not kept
     uint32_t count = 0;
 
     /// Room for @p candidates entries.
@@ -93,7 +95,7 @@ inline void collectGroupCandidates(const GlobuleArrays& s, uint32_t begin, uint3
         keepFrom(out.vx, s.vx);
         keepFrom(out.vy, s.vy);
         keepFrom(out.vz, s.vz);
-        keepFrom(out.radius, s.radius);
+        if (!out.uniformRadius) keepFrom(out.radius, s.radius);
         count += uint32_t(__builtin_popcount(near));
     }
 #else
@@ -141,7 +143,8 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
         const __m512 dy = _mm512_sub_ps(py, _mm512_loadu_ps(c.y.data() + j));
         const __m512 dz = _mm512_sub_ps(pz, _mm512_loadu_ps(c.z.data() + j));
         const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
-        const __m512 sum = _mm512_add_ps(pr, _mm512_loadu_ps(c.radius.data() + j));
+        const __m512 sum =
+            _mm512_add_ps(pr, c.uniformRadius ? pr : _mm512_loadu_ps(c.radius.data() + j));
         const __m512 limit = _mm512_mul_ps(_mm512_mul_ps(sum, sum), reach2v);
         const __mmask16 near = _mm512_mask_cmp_ps_mask(live, d2, limit, _CMP_LT_OQ) &
                                _mm512_cmp_ps_mask(d2, zero, _CMP_GT_OQ);
@@ -156,14 +159,14 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
         const __m512 dvy = _mm512_sub_ps(pvy, _mm512_loadu_ps(c.vy.data() + j));
         const __m512 dvz = _mm512_sub_ps(pvz, _mm512_loadu_ps(c.vz.data() + j));
         keep(bvp, _mm512_fmadd_ps(dvz, dz, _mm512_fmadd_ps(dvy, dy, _mm512_mul_ps(dvx, dx))));
-        keep(bsum, sum);
+        if (!c.uniformRadius) keep(bsum, sum);
         count += uint32_t(__builtin_popcount(near));
     }
 #else
     for (uint32_t j = 0; j < end; ++j) {
         const float dx = x - c.x[j], dy = y - c.y[j], dz = z - c.z[j];
         const float d2 = dx * dx + dy * dy + dz * dz;
-        const float sum = r + c.radius[j];
+        const float sum = r + (c.uniformRadius ? r : c.radius[j]);
         bx[count] = dx;
         by[count] = dy;
         bz[count] = dz;
@@ -173,6 +176,7 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
     }
 #endif
     out.count = count;
+    out.uniformSum = c.uniformRadius ? r + r : 0.0f;
 }
 
 /// b1/D^M - b2/D^N with integer exponents known at compile time (0 = use pow()).
@@ -197,6 +201,7 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
     const float *bx = batch.dx.data(), *by = batch.dy.data(), *bz = batch.dz.data();
     const float* bvp = batch.vDotP.data();
     const float* bsum = batch.radiusSum.data();
+    const bool uniform = batch.uniformSum > 0;
     const uint32_t count = batch.count;
 #if defined(__AVX512F__)
     if constexpr (M > 0 && N > 0) {
@@ -213,7 +218,8 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
             const __m512 dx = _mm512_maskz_loadu_ps(live, bx + k);
             const __m512 dy = _mm512_maskz_loadu_ps(live, by + k);
             const __m512 dz = _mm512_maskz_loadu_ps(live, bz + k);
-            const __m512 sum = _mm512_mask_loadu_ps(one, live, bsum + k);
+            const __m512 sum = uniform ? _mm512_set1_ps(batch.uniformSum)
+                                       : _mm512_mask_loadu_ps(one, live, bsum + k);
             const __m512 sum2 = _mm512_mul_ps(sum, sum);
             __m512 invSum2 = _mm512_rcp14_ps(sum2);  // one Newton step: ~full precision
             invSum2 = _mm512_mul_ps(invSum2, _mm512_fnmadd_ps(sum2, invSum2, two));
@@ -246,7 +252,7 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
     float ax = 0, ay = 0, az = 0;
     for (uint32_t k = 0; k < count; ++k) {
         const float dx = bx[k], dy = by[k], dz = bz[k];
-        const float sum = bsum[k];
+        const float sum = uniform ? batch.uniformSum : bsum[k];
         const float invSum2 = 1.0f / (sum * sum);
         const float d2 = dx * dx + dy * dy + dz * dz;
         const float safeD2 = std::max(d2, minFraction2 * sum * sum);
