@@ -192,6 +192,21 @@ inline float radialTerm(const PairForce& p, float invD, float distance) {
     }
 }
 
+#if defined(__AVX512F__)
+/// x^K by squaring (K >= 1): x^5 = x (x^2)^2, three multiplications.
+template <int K>
+inline __m512 intPow(__m512 x) {
+    if constexpr (K == 1) {
+        return x;
+    } else if constexpr (K % 2 == 0) {
+        const __m512 root = intPow<K / 2>(x);
+        return _mm512_mul_ps(root, root);
+    } else {
+        return _mm512_mul_ps(x, intPow<K - 1>(x));
+    }
+}
+#endif
+
 /// Adds to (fx, fy, fz) the force of eq. (2) from every neighbour in @p batch.
 template <int M, int N>
 inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, float& fy,
@@ -211,37 +226,51 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
         const __m512 cr2 = _mm512_set1_ps(invCr2), cd2 = _mm512_set1_ps(invCd2);
         const __m512 b1 = _mm512_set1_ps(p.b1), b2 = _mm512_set1_ps(p.b2);
         const __m512 minF2 = _mm512_set1_ps(minFraction2);
+        const float fixedSum2 = batch.uniformSum * batch.uniformSum;
+        const __m512 fixedInvSum2 = _mm512_set1_ps(uniform ? 1.0f / fixedSum2 : 0.0f);
+        const __m512 fixedMinD2 = _mm512_set1_ps(minFraction2 * fixedSum2);
         __m512 ax = zero, ay = zero, az = zero;
-        for (uint32_t k = 0; k < count; k += 16) {
-            const uint32_t left = count - k;
-            const __mmask16 live = left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1);
-            const __m512 dx = _mm512_maskz_loadu_ps(live, bx + k);
-            const __m512 dy = _mm512_maskz_loadu_ps(live, by + k);
-            const __m512 dz = _mm512_maskz_loadu_ps(live, bz + k);
-            const __m512 sum = uniform ? _mm512_set1_ps(batch.uniformSum)
-                                       : _mm512_mask_loadu_ps(one, live, bsum + k);
-            const __m512 sum2 = _mm512_mul_ps(sum, sum);
-            __m512 invSum2 = _mm512_rcp14_ps(sum2);  // one Newton step: ~full precision
-            invSum2 = _mm512_mul_ps(invSum2, _mm512_fnmadd_ps(sum2, invSum2, two));
-            const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
-            const __m512 safeD2 = _mm512_max_ps(d2, _mm512_mul_ps(minF2, sum2));
-            __m512 invD = _mm512_rsqrt14_ps(safeD2);
-            invD = _mm512_mul_ps(invD, _mm512_fnmadd_ps(_mm512_mul_ps(half, safeD2),
-                                                        _mm512_mul_ps(invD, invD), threeHalves));
-            const __m512 relative = _mm512_mul_ps(d2, invSum2);
-            const __m512 windowR = _mm512_max_ps(zero, _mm512_fnmadd_ps(relative, cr2, one));
-            const __m512 windowD = _mm512_max_ps(zero, _mm512_fnmadd_ps(relative, cd2, one));
-            __m512 powM = invD, powN = invD;
-            for (int e = 1; e < M; ++e) powM = _mm512_mul_ps(powM, invD);
-            for (int e = 1; e < N; ++e) powN = _mm512_mul_ps(powN, invD);
-            const __m512 radial = _mm512_fmsub_ps(b1, powM, _mm512_mul_ps(b2, powN));
-            const __m512 vDotP = _mm512_maskz_loadu_ps(live, bvp + k);
-            const __m512 drag = _mm512_mul_ps(_mm512_mul_ps(windowD, vDotP),
-                                              _mm512_mul_ps(invD, invD));
-            const __m512 scale = _mm512_fmsub_ps(windowR, radial, drag);
-            ax = _mm512_mask3_fmadd_ps(scale, dx, ax, live);
-            ay = _mm512_mask3_fmadd_ps(scale, dy, ay, live);
-            az = _mm512_mask3_fmadd_ps(scale, dz, az, live);
+        // The loop is instantiated twice so that a uniform radius costs no per-pair work.
+        const auto sumAll = [&]<bool Uniform>() {
+            for (uint32_t k = 0; k < count; k += 16) {
+                const uint32_t left = count - k;
+                const __mmask16 live = left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1);
+                const __m512 dx = _mm512_maskz_loadu_ps(live, bx + k);
+                const __m512 dy = _mm512_maskz_loadu_ps(live, by + k);
+                const __m512 dz = _mm512_maskz_loadu_ps(live, bz + k);
+                __m512 invSum2 = fixedInvSum2, minD2 = fixedMinD2;
+                if constexpr (!Uniform) {
+                    const __m512 sum = _mm512_mask_loadu_ps(one, live, bsum + k);
+                    const __m512 sum2 = _mm512_mul_ps(sum, sum);
+                    invSum2 = _mm512_rcp14_ps(sum2);  // one Newton step: ~full precision
+                    invSum2 = _mm512_mul_ps(invSum2, _mm512_fnmadd_ps(sum2, invSum2, two));
+                    minD2 = _mm512_mul_ps(minF2, sum2);
+                }
+                const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
+                const __m512 safeD2 = _mm512_max_ps(d2, minD2);
+                __m512 invD = _mm512_rsqrt14_ps(safeD2);
+                invD = _mm512_mul_ps(invD, _mm512_fnmadd_ps(_mm512_mul_ps(half, safeD2),
+                                                            _mm512_mul_ps(invD, invD), threeHalves));
+                const __m512 relative = _mm512_mul_ps(d2, invSum2);
+                const __m512 windowR = _mm512_max_ps(zero, _mm512_fnmadd_ps(relative, cr2, one));
+                const __m512 windowD = _mm512_max_ps(zero, _mm512_fnmadd_ps(relative, cd2, one));
+                const __m512 powN = intPow<N>(invD);
+                const __m512 powM = M > N ? _mm512_mul_ps(powN, intPow<(M > N ? M - N : 1)>(invD))
+                                          : intPow<M>(invD);
+                const __m512 radial = _mm512_fmsub_ps(b1, powM, _mm512_mul_ps(b2, powN));
+                const __m512 vDotP = _mm512_maskz_loadu_ps(live, bvp + k);
+                const __m512 drag = _mm512_mul_ps(_mm512_mul_ps(windowD, vDotP),
+                                                  _mm512_mul_ps(invD, invD));
+                const __m512 scale = _mm512_fmsub_ps(windowR, radial, drag);
+                ax = _mm512_mask3_fmadd_ps(scale, dx, ax, live);
+                ay = _mm512_mask3_fmadd_ps(scale, dy, ay, live);
+                az = _mm512_mask3_fmadd_ps(scale, dz, az, live);
+            }
+        };
+        if (uniform) {
+            sumAll.template operator()<true>();
+        } else {
+            sumAll.template operator()<false>();
         }
         fx += _mm512_reduce_add_ps(ax);
         fy += _mm512_reduce_add_ps(ay);
