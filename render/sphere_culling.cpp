@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include "sphere_pass.h"
 
@@ -16,7 +15,6 @@ namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 constexpr std::size_t kGrain = 4096;
-constexpr double kHalfPi = 0.5 * std::numbers::pi;
 constexpr int kBandRows = 16;  // rows of the depth grid drawn by one task
 constexpr int kBlock = 8;      // pixels per side of a block of the coarse test
 
@@ -87,9 +85,10 @@ void cameraDiscs(const Globules& g, const FrameUniforms& f, std::vector<ScreenDi
             // and theta is at most the centre's angle plus asin(b / distance).
             const double b = std::min(kCameraCore * r, r - 0.6 * pixel * distance);
             d.coreRadius = float(b / (distance * pixel) - 0.01);
-            const double theta = std::acos(std::clamp(depth / distance, 0.0, 1.0)) +
-                                 std::asin(std::clamp(b / distance, 0.0, 1.0));
-            const double cosRay = std::max(cosMin, std::cos(std::min(theta, kHalfPi)));
+            const double sinSpread = std::clamp(b / distance, 0.0, 1.0);
+            const double cosRay = std::max(  // cos(centre angle + spread), no trigonometry
+                cosMin,
+                (depth * std::sqrt(1 - sinSpread * sinSpread) - radial * sinSpread) / distance);
             d.coreDepth = float(depth + b * std::sqrt(1 - cosRay * cosRay) -
                                 std::sqrt(std::max(r * r - b * b, 0.0)) * cosRay);
         }
