@@ -49,6 +49,17 @@ void BM_LevelSet(benchmark::State& state) {
 }
 BENCHMARK(BM_LevelSet)->Apply(sizes);
 
+/// The levelSetRebuild path fieldToLevelSet replaced, for comparison.
+void BM_LevelSetRebuild(benchmark::State& state) {
+    const Globules g = benchPuddle(std::size_t(state.range(0)));
+    const auto field = splatMetaballs(g, kSettings.metaballKernel(), kSettings.influence,
+                                      resolveVoxelSize(kSettings, g));
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(rebuildLevelSet(*field, kSettings.isoValue, kSettings.bandWidth));
+    }
+}
+BENCHMARK(BM_LevelSetRebuild)->Apply(sizes);
+
 void BM_Mesh(benchmark::State& state) {
     const Globules g = benchPuddle(std::size_t(state.range(0)));
     const auto field = splatMetaballs(g, kSettings.metaballKernel(), kSettings.influence,
@@ -70,7 +81,7 @@ void BM_Fog(benchmark::State& state) {
 }
 BENCHMARK(BM_Fog)->Apply(sizes);
 
-/// splat + rebuild + fog + mesh, what surfaceGlobules does per frame.
+/// splat + level set + fog + mesh, what surfaceGlobules does per frame.
 void BM_SurfaceFrame(benchmark::State& state) {
     const Globules g = benchPuddle(std::size_t(state.range(0)));
     for (auto _ : state) benchmark::DoNotOptimize(surfaceGlobules(g, kSettings));

@@ -8,7 +8,8 @@
 # Particles: bench_puddle(COUNT) (bench/surface_bench_scene.h), radius 1, written as a
 # PLY point cloud that vdb_tool reads. Both sides run at voxel size 0.25 (globular's
 # default, radius / 4) with a 3-voxel half band and produce a uniform mesh written as PLY:
-#   globular:  Wyvill metaballs -> levelSetRebuild -> volumeToMesh -> PLY
+#   globular:  Wyvill metaballs -> narrow-band level set (fieldToLevelSet) -> volumeToMesh
+#              -> PLY
 #   vdb_tool:  -points2ls (spheres of radius 4 voxels = 1 world unit, the radius of a lone
 #              globule's surface) -> -ls2mesh -> -write PLY
 # Times are wall seconds of those steps, from each side's own timers: globular's

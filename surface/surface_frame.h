@@ -24,7 +24,7 @@ struct SurfaceFrame {
     std::size_t dropletsRemoved = 0;      ///< pieces below droplet_volume
 };
 
-/// Splats, rebuilds, filters, removes droplets, makes the fog volume and meshes.
+/// Splats, makes the level set, filters, removes droplets, makes the fog volume and meshes.
 /// Uses TBB inside (limit threads with a tbb::task_arena); the result does not depend on
 /// the thread count.
 /// @throw SceneError when @p settings are invalid; SimulationError for a non-finite
