@@ -13,12 +13,14 @@ namespace globular {
 
 namespace {
 
-/// Emitters whose globules all exist at t = 0: a precomputed list added on first call.
+/// Emitters whose globules all exist at t = 0: a precomputed list added on first call,
+/// then freed (it would double the memory of a large initial block).
 class InitialEmitter : public Emitter {
 public:
     InitialEmitter(const EmitterSettings& s, std::vector<Vec3> positions,
                    std::vector<Vec3> velocities = {}, std::vector<float> radii = {})
         : mSettings(s),
+          mTotal(positions.size()),
           mPositions(std::move(positions)),
           mVelocities(std::move(velocities)),
           mRadii(std::move(radii)) {}
@@ -31,13 +33,24 @@ public:
             const float r = mRadii.empty() ? float(mSettings.radius) : mRadii[k];
             g.add(mPositions[k], v, r, float(mSettings.mass), nextId++);
         }
+        release();
     }
-    std::size_t total() const override { return mPositions.size(); }
-    std::size_t emitted() const override { return mDone ? mPositions.size() : 0; }
-    void skipTo(std::size_t count) override { mDone = count > 0; }
+    std::size_t total() const override { return mTotal; }
+    std::size_t emitted() const override { return mDone ? mTotal : 0; }
+    void skipTo(std::size_t count) override {
+        mDone = count > 0;
+        if (mDone) release();
+    }
 
 private:
+    void release() {
+        std::vector<Vec3>().swap(mPositions);
+        std::vector<Vec3>().swap(mVelocities);
+        std::vector<float>().swap(mRadii);
+    }
+
     EmitterSettings mSettings;
+    std::size_t mTotal;
     std::vector<Vec3> mPositions, mVelocities;
     std::vector<float> mRadii;
     bool mDone = false;

@@ -36,7 +36,6 @@ void pairForcesAllPairs(const Globules& globules, const PairForce& pair, Acceler
 /// What the grid force loop keeps between steps.
 struct NeighborWorkspace {
     NeighborGrid grid;
-    std::vector<float> scratch;  ///< reused by Globules::permute
 };
 
 /// The same sums over cell-list neighbours only. Sorts @p globules into neighbour-grid

@@ -69,10 +69,12 @@ void NeighborGrid::build(const float* px, const float* py, const float* pz, std:
     }
     mCellSize = cellSize;
     mInvCellSize = 1.0f / cellSize;
-    // One bucket per point at most (a point per row, e.g. a thin falling stream): rows
-    // rarely share a bucket, yet the table costs at most 8 bytes per point.
+    // Half a bucket to one bucket per point. Rows of cells hold tens to hundreds of
+    // points in a liquid, so rows seldom share a bucket; in the sparsest case (one point
+    // per row, a thin stream) two rows share one and the runs carry some far candidates,
+    // which the force loop rejects. The table costs 2-4 bytes per point.
     uint32_t buckets = 64;
-    while (buckets < n) buckets *= 2;
+    while (2 * buckets < n) buckets *= 2;
     mMask = buckets - 1;
 
     // Counting sort by bucket. The fill pointers are the bucket starts themselves: after

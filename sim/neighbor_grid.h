@@ -1,6 +1,6 @@
 #pragma once
 // Uniform-grid neighbour search (cell lists) over an unbounded domain. Rows of cells
-// (fixed y and z) are hashed into a table of 1-2 buckets per point; points are
+// (fixed y and z) are hashed into a table of 0.5-1 bucket per point; points are
 // counting-sorted by row bucket and, within a bucket, by x cell. The three x-adjacent
 // cells of a row are then one contiguous run, so a query is at most 9 runs — long,
 // contiguous loops for the vectorised force kernel — and a rebuild is O(N) (plus small
