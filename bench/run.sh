@@ -10,6 +10,7 @@
 #   4. LAMMPS on the identical workload (bench/lammps/compare.sh) at 1e5 and 1e6
 #   5. surfacing against vdb_tool (bench/surface_vs_vdb_tool.sh), if present
 #   6. rendering (render_bench), if present
+#   7. end to end: the 240-frame pour of 1e5 globules, all three stages (bench/end_to_end.sh)
 # A part whose program or peer is missing is skipped with a note. Every part runs under
 # `timeout`. Timings are wall clock; where other work shares the machine, the CPU-time
 # columns are the steadier figure (see docs/performance.md).
@@ -34,7 +35,7 @@ echo "# machine: $(lscpu | awk -F: '/^Model name/ {gsub(/^ +/, "", $2); print $2
 echo "# load average at start: $(cut -d' ' -f1-3 /proc/loadavg); priority: $([[ -n ${GLOBULAR_BENCH_PRIORITY:-} ]] && echo "own autogroup, nice -20" || echo "normal")"
 
 # Build what is there; a target that does not exist or fails is reported, not fatal.
-for target in sim_bench make_workload sim_steps globular_surface_compare render_bench; do
+for target in globular sim_bench make_workload sim_steps globular_surface_compare render_bench; do
     if ninja -C "$build" -t targets all 2>/dev/null | grep -q "^$target:"; then
         ninja -C "$build" "$target" >/dev/null 2>&1 || echo "# warning: building $target failed"
     fi
@@ -100,9 +101,7 @@ if have sim_steps && [[ -x /usr/bin/time ]]; then
     echo "  peak RSS: $small globules $base KiB, $big globules $top KiB"
     awk -v a="$top" -v b="$base" -v n="$big" -v m="$small" 'BEGIN {
         per = (a - b) * 1024 / (n - m)
-        printf "  %.1f bytes per globule of peak resident memory (whole process, 12 steps: one\n", per
-        printf "  grid reorder included); of it 24 B are the box emitter'"'"'s double-precision copy of\n"
-        printf "  the initial positions, which the simulation keeps: %.1f B/globule without it\n", per - 24 }'
+        printf "  %.1f bytes per globule of peak resident memory (whole process, 12 steps)\n", per }'
 else
     note "sim_steps or /usr/bin/time missing"
 fi
@@ -139,6 +138,17 @@ if have render_bench; then
     timeout 300 "$build/bench/render_bench" 2>/dev/null | sed 's/^/  /' || echo "  (render_bench stopped: $?)"
 else
     note "render_bench not built (target not present yet)"
+fi
+
+# ---------------------------------------------------------------------------------------
+section "7. end to end: 240-frame pour of 1e5 globules, all stages (bench/end_to_end.sh)"
+if [[ -x "$build/globular" && -x /usr/bin/time ]]; then
+    frames=240
+    ((quick)) && frames=12
+    FRAMES=$frames timeout 3600 "$root/bench/end_to_end.sh" "$build" | sed 's/^/  /' ||
+        echo "  (end-to-end run stopped: $?)"
+else
+    note "needs build/globular and /usr/bin/time"
 fi
 
 echo

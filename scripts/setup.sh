@@ -4,7 +4,8 @@
 # incrementally.
 #   scripts/setup.sh            release build in build/
 #   BUILD_DIR=x BUILD_TYPE=Debug SANITIZE=ON scripts/setup.sh
-#   WITH_PEERS=1 scripts/setup.sh   also the benchmark peers (lammps, hyperfine)
+#   WITH_PEERS=1 scripts/setup.sh   also what the benchmarks use: the peers (lammps,
+#                                   hyperfine, ffmpeg) and jq, time
 set -euo pipefail
 
 packages=(
@@ -18,7 +19,7 @@ packages=(
     clang libclang-rt-14-dev    # libFuzzer targets (scripts/ci_reliability.sh)
 )
 if [[ "${WITH_PEERS:-0}" == 1 ]]; then
-    packages+=(lammps hyperfine ffmpeg)
+    packages+=(lammps hyperfine ffmpeg jq time)
 fi
 
 missing=()
