@@ -17,7 +17,7 @@ struct FrameUniforms {
     Vec3 eye;
     Vec3 camForward;                  ///< unit view direction
     Vec3 camRight, camUp;             ///< scaled to reach the image's edges at unit distance
-    float zNear = 0;                  ///< world units
+    float zNear = 0, zFar = 0;        ///< world units
     float pixelAngle = 0;             ///< a pixel's width at unit distance, world units
     float focalPixels[2] = {0, 0};    ///< pixels per unit of x/depth and of y/depth
     std::vector<Vec3> lightToward;    ///< unit, towards each light

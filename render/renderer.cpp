@@ -110,6 +110,7 @@ struct Renderer::Impl {
         f.camUp = Vec3{v(1, 0), v(1, 1), v(1, 2)} * tanHalf;
         f.camForward = Vec3{-v(2, 0), -v(2, 1), -v(2, 2)};
         f.zNear = float(depth.zNear);
+        f.zFar = float(depth.zFar);
         f.pixelAngle = float(2.0 * tanHalf / height);
         f.focalPixels[0] = float(0.5 * width / (tanHalf * aspect));
         f.focalPixels[1] = float(0.5 * height / tanHalf);

@@ -73,7 +73,7 @@ void cameraDiscs(const Globules& g, const FrameUniforms& f, std::vector<ScreenDi
             d.reach = 0.5f * (spriteSize({radial, 0, v.z}, r, focal, focal, zNear) - 1.0f) + 1.0f;
             // Window depth is stored in 24 bits: two depths d apart stay ordered when d is
             // more than a few steps of 2^-24 * depth^2 / zNear; plus float rounding.
-            const double margin = 4.0 * 0x1p-24 * depth * depth / zNear + 1e-5 * depth;
+            const double margin = 16.0 * 0x1p-24 * depth * depth / zNear + 1e-5 * depth;
             d.nearDepth = float(depth - r - margin);
             // Samples within Delta pixels of the centre see rays that pass the centre at
             // b <= distance * Delta * pixel. With b <= r - 0.6 pixel * distance the sample
@@ -84,7 +84,11 @@ void cameraDiscs(const Globules& g, const FrameUniforms& f, std::vector<ScreenDi
             //   depth + b sin(theta) - sqrt(r^2 - b^2) cos(theta),
             // and theta is at most the centre's angle plus asin(b / distance).
             const double b = std::min(kCameraCore * r, r - 0.6 * pixel * distance);
-            d.coreRadius = float(b / (distance * pixel) - 0.01);
+            // Only a sphere wholly drawn occludes: its centre in the view (points are
+            // clipped by their centre) and all of it within the depth range.
+            const bool drawn = d.x >= 0 && d.x <= f.width && d.y >= 0 && d.y <= f.height &&
+                               depth + r < 0.999 * f.zFar;
+            d.coreRadius = drawn ? float(b / (distance * pixel) - 0.01) : 0.0f;
             const double sinSpread = std::clamp(b / distance, 0.0, 1.0);
             const double cosRay = std::max(  // cos(centre angle + spread), no trigonometry
                 cosMin,
@@ -102,7 +106,7 @@ void lightDiscs(const Globules& g, const FrameUniforms& f, std::vector<ScreenDis
     // Normalised depth (-1..1) per world unit towards the light: negative.
     const double depthPerUnit = m(2, 0) * toward.x + m(2, 1) * toward.y + m(2, 2) * toward.z;
     const double size = f.shadowMapSize, tpu = f.texelsPerUnit;
-    const double margin = 4.0 * 0x1p-23 + 1e-6;  // 24-bit depth in -1..1, float rounding
+    const double margin = 16.0 * 0x1p-23 + 1e-6;  // 24-bit depth in -1..1, float rounding
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.size(), kGrain), [&](auto range) {
         for (std::size_t i = range.begin(); i < range.end(); ++i) {
             ScreenDisc& d = discs[i];
@@ -120,7 +124,11 @@ void lightDiscs(const Globules& g, const FrameUniforms& f, std::vector<ScreenDis
             d.half = float(r * tpu + 1.5);
             d.reach = float(r * tpu + 0.01);  // texel centres within the disc
             d.nearDepth = float(cz - radiusDepth - margin);
-            d.coreRadius = float(kLightCore * r * tpu - 0.01);
+            // Only a sphere wholly drawn occludes (see cameraDiscs): its centre in the map,
+            // all of it between the near and far planes.
+            const bool drawn = d.x >= 0 && d.x <= size && d.y >= 0 && d.y <= size &&
+                               cz - radiusDepth > -1 + margin && cz + radiusDepth < 1 - margin;
+            d.coreRadius = drawn ? float(kLightCore * r * tpu - 0.01) : 0.0f;
             d.coreDepth = float(cz - radiusDepth * std::sqrt(1 - kLightCore * kLightCore));
         }
     });

@@ -337,5 +337,28 @@ TEST(Renderer, OcclusionCullingLeavesTheImageUnchanged) {
     }
 }
 
+TEST(Renderer, OcclusionCullingAtTheFrameEdgeLeavesTheImageUnchanged) {
+    // A big sphere whose centre is just off the left edge, in front of small ones inside
+    // the frame: however the driver clips it, culling must not change what shows.
+    Globules g;
+    g.add({-10.8, 0, 2}, {}, 3, 1, 0);  // centre at x / depth = -1.35, the edge at -1.33
+    int32_t id = 1;
+    for (double y = -3; y <= 3; y += 0.5) {
+        for (double x = -17; x <= -13.5; x += 0.5) g.add({x, y, -3}, {}, 0.3f, 1, id++);
+    }
+    for (int samples : {1, 4}) {
+        Renderer renderer(kWidth, kHeight, samples);
+        const FrameSetup setup = flatSetup();
+        const Image culled = renderer.drawSpheres(g, setup);
+        renderer.setOcclusionCulling(false);
+        const Image all = renderer.drawSpheres(g, setup);
+        std::size_t differing = 0;
+        for (int y = 0; y < kHeight; ++y) {
+            for (int x = 0; x < kWidth; ++x) differing += rgb(culled, x, y) != rgb(all, x, y);
+        }
+        EXPECT_EQ(differing, 0u) << samples << " samples";
+    }
+}
+
 }  // namespace
 }  // namespace globular
