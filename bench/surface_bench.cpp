@@ -33,7 +33,8 @@ void BM_Splat(benchmark::State& state) {
     const Globules g = benchPuddle(std::size_t(state.range(0)));
     const double h = resolveVoxelSize(kSettings, g);
     for (auto _ : state) {
-        auto field = splatMetaballs(g, kSettings.metaballKernel(), kSettings.influence, h);
+        auto field = splatMetaballs(g, kSettings.metaballKernel(), kSettings.influence, h,
+                                    kSettings.isoValue);
         state.counters["leaves"] = double(field->tree().leafCount());
     }
 }

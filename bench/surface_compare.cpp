@@ -52,7 +52,7 @@ int timePipeline(std::size_t count, double voxelSize, const std::string& meshPat
 
     const auto start = std::chrono::steady_clock::now();
     auto t = start;
-    const auto field = splatMetaballs(g, s.metaballKernel(), s.influence, voxelSize);
+    const auto field = splatMetaballs(g, s.metaballKernel(), s.influence, voxelSize, s.isoValue);
     const double splat = seconds(t);
     t = std::chrono::steady_clock::now();
     const auto levelSet = rebuild ? rebuildLevelSet(*field, s.isoValue, s.bandWidth)

@@ -70,6 +70,15 @@ GlobuleBins::GlobuleBins(const Globules& g, double voxelSize, double influence) 
         mSorted.push_back(uint32_t(i));
     }
     mReach = int(std::ceil(maxInfluence / kBlockDim));
+    for (int dx = -mReach; dx <= mReach; ++dx) {
+        for (int dy = -mReach; dy <= mReach; ++dy) {
+            for (int dz = -mReach; dz <= mReach; ++dz) {
+                mOrder.push_back({dx, dy, dz, dx * dx + dy * dy + dz * dz});
+            }
+        }
+    }
+    std::stable_sort(mOrder.begin(), mOrder.end(),
+                     [](const auto& a, const auto& b) { return a[3] < b[3]; });
 
     // (block, index) is a total order, so the parallel sort is deterministic.
     tbb::parallel_sort(mSorted.begin(), mSorted.end(), [&](uint32_t a, uint32_t b) {

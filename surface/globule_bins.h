@@ -40,18 +40,26 @@ class GlobuleBins {
     const std::vector<uint64_t>& candidateBlocks() const { return mCandidates; }
 
     /// Calls visit(i) for each globule i whose influence may reach block @p blockKey: all
-    /// globules centred within reach() blocks of it, in a thread-independent order.
+    /// globules centred within reach() blocks of it, in a thread-independent order: block
+    /// by block in nearOrder(), nearest first (those that cover most of the block).
     template <typename Visit>
     void forEachGlobuleNear(uint64_t blockKey, Visit&& visit) const {
+        for (const auto& offset : mOrder) forEachGlobuleIn(blockKey, offset, visit);
+    }
+
+    /// Offsets (dx, dy, dz, dx^2 + dy^2 + dz^2) of the blocks within reach() of a block,
+    /// by increasing distance (the block itself, its 6 face neighbours, 12 edge
+    /// neighbours, ...), then by offset.
+    const std::vector<std::array<int, 4>>& nearOrder() const { return mOrder; }
+
+    /// Calls visit(i) for each globule centred in block @p blockKey + @p offset, in index
+    /// order.
+    template <typename Visit>
+    void forEachGlobuleIn(uint64_t blockKey, const std::array<int, 4>& offset,
+                          Visit&& visit) const {
         const auto b = unpack(blockKey);
-        for (int dx = -mReach; dx <= mReach; ++dx) {
-            for (int dy = -mReach; dy <= mReach; ++dy) {
-                for (int dz = -mReach; dz <= mReach; ++dz) {
-                    const auto [begin, end] = cellRange(b[0] + dx, b[1] + dy, b[2] + dz);
-                    for (uint32_t k = begin; k < end; ++k) visit(mSorted[k]);
-                }
-            }
-        }
+        const auto [begin, end] = cellRange(b[0] + offset[0], b[1] + offset[1], b[2] + offset[2]);
+        for (uint32_t k = begin; k < end; ++k) visit(mSorted[k]);
     }
 
     /// Centre in index space (voxel units) and influence radius in voxels of globule @p i.
@@ -77,6 +85,7 @@ class GlobuleBins {
     std::vector<uint64_t> mCellKeys;   ///< distinct centre blocks, ascending
     std::vector<uint32_t> mCellStart;  ///< mSorted range of each cell; size cells + 1
     std::vector<uint64_t> mCandidates;
+    std::vector<std::array<int, 4>> mOrder;  ///< dx dy dz, dx^2+dy^2+dz^2: nearest first
     int mReach = 0;
 };
 

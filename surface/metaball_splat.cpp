@@ -46,16 +46,30 @@ struct KernelEval {
     }
 };
 
-/// Sums every reaching globule into the 8^3 voxels of one block; @return a new leaf, or
-/// nullptr when no voxel of the block lies inside an influence sphere.
+/// True when every value of a block's sum exceeds @p threshold.
+bool allAbove(const float* sum, float threshold) {
+    Row low;
+    std::memcpy(&low, sum, sizeof low);
+    for (int r = 1; r < kDim * kDim; ++r) {
+        Row row;
+        std::memcpy(&row, sum + r * kDim, sizeof row);
+        low = low < row ? low : row;
+    }
+    bool result = true;
+    for (int z = 0; z < kDim; ++z) result &= low[z] > threshold;
+    return result;
+}
+
+/// Adds the globules of the blocks nearOrder()[from...] into @p sum, the 8^3 voxels of
+/// one block. With a finite @p deepAbove, stops after a whole shell of blocks (those at
+/// one distance) once every voxel exceeds it. @return the index in nearOrder() it
+/// stopped at (its size when complete).
 template <KernelType K>
-std::unique_ptr<LeafType> splatBlock(const GlobuleBins& bins, uint64_t key,
-                                     const KernelEval<K>& kernel) {
+std::size_t addGlobules(const GlobuleBins& bins, uint64_t key, const KernelEval<K>& kernel,
+                        float* sum, std::size_t from, float deepAbove) {
     const auto block = GlobuleBins::unpack(key);
     const int64_t ox = block[0] * kDim, oy = block[1] * kDim, oz = block[2] * kDim;
-    alignas(sizeof(Row)) float sum[kDim * kDim * kDim] = {};
-
-    bins.forEachGlobuleNear(key, [&](uint32_t i) {
+    const auto add = [&](uint32_t i) {
         const float r = bins.influenceVoxels(i);
         // Centre relative to the block origin: small numbers, so float is exact enough
         // however far the block lies from the world origin.
@@ -88,12 +102,34 @@ std::unique_ptr<LeafType> splatBlock(const GlobuleBins& bins, uint64_t key,
                 std::memcpy(row, &values, sizeof values);
             }
         }
-    });
+    };
+    const auto& order = bins.nearOrder();
+    const bool mayStop = std::isfinite(deepAbove);
+    for (std::size_t n = from; n < order.size(); ++n) {
+        bins.forEachGlobuleIn(key, order[n], add);
+        // Checked once the block and its face neighbours are in, then after each shell:
+        // a block deep inside is usually above by then.
+        const bool shellDone = n + 1 < order.size() && order[n + 1][3] != order[n][3];
+        if (mayStop && shellDone && order[n][3] >= 1 && allAbove(sum, deepAbove)) return n + 1;
+    }
+    return order.size();
+}
+
+/// The leaf of one block summed from nearOrder()[0] (see addGlobules); nullptr when no
+/// voxel of the block lies inside an influence sphere. @p next: where the sum stopped.
+template <KernelType K>
+std::unique_ptr<LeafType> splatBlock(const GlobuleBins& bins, uint64_t key,
+                                     const KernelEval<K>& kernel, float deepAbove,
+                                     std::size_t& next) {
+    const auto block = GlobuleBins::unpack(key);
+    alignas(sizeof(Row)) float sum[kDim * kDim * kDim] = {};
+    next = addGlobules<K>(bins, key, kernel, sum, 0, deepAbove);
     bool touched = false;
     for (float v : sum) touched |= v > 0.0f;
     if (!touched) return nullptr;
 
-    auto leaf = std::make_unique<LeafType>(openvdb::Coord(int(ox), int(oy), int(oz)), 0.0f, false);
+    const openvdb::Coord origin(int(block[0] * kDim), int(block[1] * kDim), int(block[2] * kDim));
+    auto leaf = std::make_unique<LeafType>(origin, 0.0f, false);
     float* values = leaf->buffer().data();
     for (int v = 0; v < kDim * kDim * kDim; ++v) {
         values[v] = sum[v];
@@ -103,13 +139,53 @@ std::unique_ptr<LeafType> splatBlock(const GlobuleBins& bins, uint64_t key,
 }
 
 template <KernelType K>
-void splatAll(const GlobuleBins& bins, const MetaballKernel& kernel,
+void splatAll(const GlobuleBins& bins, const MetaballKernel& kernel, float deepAbove,
               std::vector<std::unique_ptr<LeafType>>& leaves) {
     const KernelEval<K> eval(kernel);
     const auto& blocks = bins.candidateBlocks();
+    const std::size_t complete = bins.nearOrder().size();
+    std::vector<uint32_t> next(blocks.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 16), [&](auto range) {
         for (std::size_t b = range.begin(); b < range.end(); ++b) {
-            leaves[b] = splatBlock<K>(bins, blocks[b], eval);
+            std::size_t n;
+            leaves[b] = splatBlock<K>(bins, blocks[b], eval, deepAbove, n);
+            next[b] = uint32_t(n);
+        }
+    });
+    if (!std::isfinite(deepAbove)) return;
+    // A block whose sum stopped early keeps its partial values only when its 26
+    // neighbours are above deepAbove everywhere as well: then no voxel within a block of
+    // it is at or below, and nothing near the iso surface reads its values. Otherwise
+    // its sum goes on where it stopped, in the same order: bit-identical to a full sum.
+    auto isAbove = [&](std::size_t b) {
+        return next[b] < complete || (leaves[b] && allAbove(leaves[b]->buffer().data(), deepAbove));
+    };
+    std::vector<uint8_t> above(blocks.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 64), [&](auto range) {
+        for (std::size_t b = range.begin(); b < range.end(); ++b) above[b] = isAbove(b);
+    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 16), [&](auto range) {
+        for (std::size_t b = range.begin(); b < range.end(); ++b) {
+            if (next[b] == complete) continue;
+            const auto c = GlobuleBins::unpack(blocks[b]);
+            bool deep = true;
+            for (int dx = -1; dx <= 1 && deep; ++dx) {
+                for (int dy = -1; dy <= 1 && deep; ++dy) {
+                    for (int dz = -1; dz <= 1 && deep; ++dz) {
+                        const uint64_t key = GlobuleBins::pack(c[0] + dx, c[1] + dy, c[2] + dz);
+                        auto it = std::lower_bound(blocks.begin(), blocks.end(), key);
+                        deep = it != blocks.end() && *it == key &&
+                               above[std::size_t(it - blocks.begin())];
+                    }
+                }
+            }
+            if (deep) continue;
+            LeafType& leaf = *leaves[b];
+            float* sum = leaf.buffer().data();
+            addGlobules<K>(bins, blocks[b], eval, sum, next[b], INFINITY);
+            for (int v = 0; v < kDim * kDim * kDim; ++v) {
+                if (sum[v] > 0.0f) leaf.setValueOn(openvdb::Index(v));
+            }
         }
     });
 }
@@ -117,18 +193,18 @@ void splatAll(const GlobuleBins& bins, const MetaballKernel& kernel,
 }  // namespace
 
 FloatGrid::Ptr splatMetaballs(const Globules& globules, const MetaballKernel& kernel,
-                              double influence, double voxelSize) {
+                              double influence, double voxelSize, double deepAbove) {
     const GlobuleBins bins(globules, voxelSize, influence);
     std::vector<std::unique_ptr<LeafType>> leaves(bins.candidateBlocks().size());
     switch (kernel.type) {
         case KernelType::Wyvill:
-            splatAll<KernelType::Wyvill>(bins, kernel, leaves);
+            splatAll<KernelType::Wyvill>(bins, kernel, float(deepAbove), leaves);
             break;
         case KernelType::Blinn:
-            splatAll<KernelType::Blinn>(bins, kernel, leaves);
+            splatAll<KernelType::Blinn>(bins, kernel, float(deepAbove), leaves);
             break;
         case KernelType::Murakami:
-            splatAll<KernelType::Murakami>(bins, kernel, leaves);
+            splatAll<KernelType::Murakami>(bins, kernel, float(deepAbove), leaves);
             break;
     }
 

@@ -17,8 +17,9 @@ SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& se
     frame.voxelSize = resolveVoxelSize(settings, globules);
     openvdb::FloatGrid::Ptr levelSet;
     {
+        // Deep inside the liquid the field's exact value is never read: partial sums there.
         const auto field = splatMetaballs(globules, settings.metaballKernel(), settings.influence,
-                                          frame.voxelSize);
+                                          frame.voxelSize, settings.isoValue);
         frame.fieldLeaves = field->tree().leafCount();
         levelSet = fieldToLevelSet(*field, settings.isoValue, settings.bandWidth);
     }  // the field is the largest grid: free it before the level-set steps

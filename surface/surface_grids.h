@@ -11,6 +11,7 @@
 #include <openvdb/openvdb.h>
 
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "filter_chain.h"
@@ -32,9 +33,15 @@ struct SurfaceGrids {
 /// order, so the result is bit-identical for any thread count.
 /// @param voxelSize world units, > 0; the transform is linear with voxel centres at
 ///        integer multiples of it.
+/// @param deepAbove with the default (infinity) every voxel holds its full sum. When
+///        finite (the iso value), a leaf whose every voxel, and every voxel of its 26
+///        neighbouring leaves, exceeds it may hold partial sums (still above it): such
+///        voxels lie at least a leaf inside the iso surface, and neither the level set nor
+///        the mesh reads them. Deep inside a liquid that leaves out about half the sum.
 /// @throw SimulationError / ResourceError from GlobuleBins (non-finite or far globules).
 openvdb::FloatGrid::Ptr splatMetaballs(const Globules& globules, const MetaballKernel& kernel,
-                                       double influence, double voxelSize);
+                                       double influence, double voxelSize,
+                                       double deepAbove = std::numeric_limits<double>::infinity());
 
 /// The narrow-band level set (negative inside) of the field's @p isoValue surface,
 /// computed directly from the field (band_distance.cpp): sub-voxel distances where the

@@ -97,6 +97,45 @@ TEST(MetaballSplat, FieldIsTheKernelSumOverExactlyTheInfluenceSpheres) {
     EXPECT_GE(estimateSurface(g, s).fieldLeaves, field->tree().leafCount());
 }
 
+TEST(MetaballSplat, DeepLeavesMayHoldPartialSumsThatChangeNothingNearTheSurface) {
+    openvdb::initialize();
+    // A dense cube of globules, 12 wide: 48 voxels, so some leaves lie a leaf inside.
+    Globules g;
+    for (int x = 0; x < 12; ++x) {
+        for (int y = 0; y < 12; ++y) {
+            for (int z = 0; z < 12; ++z) g.add({x * 1.0, y * 1.0, z * 1.0}, {0, 0, 0}, 1.0f, 1, 0);
+        }
+    }
+    const MetaballKernel kernel{KernelType::Wyvill};
+    const auto exact = splatMetaballs(g, kernel, 2.0, 0.25);
+    const auto deep = splatMetaballs(g, kernel, 2.0, 0.25, 0.5);
+    // Same leaves; some deep ones hold less (never at or below the iso value), and every
+    // voxel within a leaf of one at or below it is exact.
+    EXPECT_EQ(exact->tree().leafCount(), deep->tree().leafCount());
+    auto acc = exact->getConstAccessor();
+    std::size_t partial = 0, wrong = 0;
+    for (auto it = deep->cbeginValueOn(); it; ++it) {
+        const float e = acc.getValue(it.getCoord());
+        if (*it == e) continue;
+        ++partial;
+        if (!(*it > 0.5f && *it < e)) ++wrong;
+        bool nearSurface = false;
+        const Coord c = it.getCoord();
+        for (int dx = -8; dx <= 8 && !nearSurface; ++dx) {
+            for (int dy = -8; dy <= 8 && !nearSurface; ++dy) {
+                for (int dz = -8; dz <= 8 && !nearSurface; ++dz) {
+                    nearSurface = acc.getValue(c.offsetBy(dx, dy, dz)) <= 0.5f;
+                }
+            }
+        }
+        if (nearSurface) ++wrong;
+    }
+    EXPECT_GT(partial, 512u);
+    EXPECT_EQ(wrong, 0u);
+    // The level sets are identical.
+    expectSameGrid(*fieldToLevelSet(*exact, 0.5, 3.0), *fieldToLevelSet(*deep, 0.5, 3.0));
+}
+
 TEST(FieldToLevelSet, LoneGlobuleGivesItsDistanceWithinTheBand) {
     openvdb::initialize();
     const double h = 0.1, band = 3;
