@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every benchmark that is available and prints one report (issue 7):
 #
-#   bench/run.sh [BUILD_DIR]            (default: build; QUICK=1 for a short smoke run)
+#   bench/run.sh [BUILD_DIR]            (default: build; QUICK=1 for a short smoke run,
+#                                        E2E=0 to leave out the long end-to-end run)
 #
 #   1. simulation throughput (sim_bench): globule-steps/s at 1e3 .. 1e6 globules on 1 and
 #      2 threads, with the 1 -> 2 thread speed-up and the per-globule cost (linearity)
@@ -142,7 +143,9 @@ fi
 
 # ---------------------------------------------------------------------------------------
 section "7. end to end: 240-frame pour of 1e5 globules, all stages (bench/end_to_end.sh)"
-if [[ -x "$build/globular" && -x /usr/bin/time ]]; then
+if [[ ${E2E:-1} == 0 ]]; then
+    note "E2E=0"
+elif [[ -x "$build/globular" && -x /usr/bin/time ]]; then
     frames=240
     ((quick)) && frames=12
     FRAMES=$frames timeout 3600 "$root/bench/end_to_end.sh" "$build" | sed 's/^/  /' ||
