@@ -71,6 +71,9 @@ struct Band {
     std::vector<Coord> origins;
     std::vector<std::array<int32_t, 27>> neighbours;  ///< index or -1; (dx+1)*9+(dy+1)*3+dz+1
     std::unique_ptr<Voxels[]> voxels;
+    /// The level set's leaves, one per band leaf: distances (voxels, unsigned) as the
+    /// layers find them, signed and scaled at the end.
+    std::vector<std::unique_ptr<FloatLeaf>> out;
     std::vector<int32_t> sampleSlot;  ///< per leaf, index into samples or -1
     std::unique_ptr<Samples[]> samples;
 
@@ -100,7 +103,8 @@ struct Band {
 /// whole tangent planes underestimate by voxels near creases.
 constexpr float kSampleRadius = 0.5f;
 
-float Band::distanceToSample(std::size_t i, int x, int y, int z, const int s[3]) const {
+inline float Band::distanceToSample(std::size_t i, int x, int y, int z,
+                                   const int s[3]) const {
     int v;
     const int32_t leaf = locate(i, x + s[0], y + s[1], z + s[2], v);
     const Samples& sample = samples[std::size_t(sampleSlot[std::size_t(leaf)])];
@@ -178,6 +182,7 @@ Band makeBand(const std::vector<MaskTree>& layers) {
     // Not value-initialised: every value is written before it is read but the layers,
     // filled below.
     band.voxels.reset(new Band::Voxels[n]);
+    band.out.resize(n);
     band.samples.reset(new Band::Samples[std::size_t(slots)]);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](auto r) {
         for (std::size_t i = r.begin(); i < r.end(); ++i) {
@@ -191,6 +196,7 @@ Band makeBand(const std::vector<MaskTree>& layers) {
                 }
             }
             std::fill(std::begin(band.voxels[i].layer), std::end(band.voxels[i].layer), kUnknown);
+            band.out[i] = std::make_unique<FloatLeaf>(band.origins[i], 0.0f, false);
         }
     });
     return band;
@@ -207,6 +213,7 @@ void footOnInterface(const FloatGrid& field, float iso, const MaskTree& interfac
             const std::size_t i = std::size_t(band.find(leaf.origin()));
             Band::Voxels& voxels = band.voxels[i];
             Band::Samples& sample = band.samples[std::size_t(band.sampleSlot[i])];
+            float* distance = band.out[i]->buffer().data();
             for (auto it = leaf.cbeginValueOn(); it; ++it) {
                 const Coord ijk = it.getCoord();
                 const float f = acc.getValue(ijk);
@@ -265,6 +272,9 @@ void footOnInterface(const FloatGrid& field, float iso, const MaskTree& interfac
                     sample.offset[a][v] = int16_t(std::lround(offset[a] * Band::kOffsetScale));
                     voxels.source[a][v] = 0;
                 }
+                const int zero[3] = {0, 0, 0};
+                const Coord local = MaskLeaf::offsetToLocalCoord(v);
+                distance[v] = band.distanceToSample(i, local.x(), local.y(), local.z(), zero);
                 voxels.layer[v] = 0;
             }
         }
@@ -300,6 +310,7 @@ void footFromNeighbours(const MaskTree& layer, uint8_t k, Band& band) {
             const MaskLeaf& leaf = leaves.leaf(l);
             const std::size_t i = std::size_t(band.find(leaf.origin()));
             Band::Voxels& voxels = band.voxels[i];
+            float* distance = band.out[i]->buffer().data();
             for (auto it = leaf.cbeginValueOn(); it; ++it) {
                 const Coord p = MaskLeaf::offsetToLocalCoord(it.pos());
                 float best = INFINITY;
@@ -331,6 +342,7 @@ void footFromNeighbours(const MaskTree& layer, uint8_t k, Band& band) {
                     }
                 }
                 for (int a = 0; a < 3; ++a) voxels.source[a][it.pos()] = int8_t(bestSource[a]);
+                distance[it.pos()] = best;
             }
         }
     });
@@ -382,37 +394,30 @@ FloatGrid::Ptr fieldToLevelSet(const FloatGrid& field, double isoValue, double b
     }
 
     // Distances, signed by the inside mask; active within the band.
-    std::vector<std::unique_ptr<FloatLeaf>> out(band.origins.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 64), [&](auto r) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, band.origins.size(), 64), [&](auto r) {
         openvdb::tree::ValueAccessor<const MaskTree> insideAcc(inside);
         for (std::size_t i = r.begin(); i < r.end(); ++i) {
             const MaskLeaf* in = insideAcc.probeConstLeaf(band.origins[i]);
             const Band::Voxels& voxels = band.voxels[i];
-            auto leaf = std::make_unique<FloatLeaf>(band.origins[i], background, false);
-            float* values = leaf->buffer().data();
+            FloatLeaf& leaf = *band.out[i];
+            float* values = leaf.buffer().data();
             bool any = false;
             for (int v = 0; v < kVoxels; ++v) {
                 const float sign = in && in->isValueOn(openvdb::Index(v)) ? -1.0f : 1.0f;
-                float d = float(bandWidth);
-                if (voxels.layer[v] != kUnknown) {
-                    const Coord p = FloatLeaf::offsetToLocalCoord(openvdb::Index(v));
-                    const int s[3] = {voxels.source[0][v], voxels.source[1][v],
-                                      voxels.source[2][v]};
-                    d = band.distanceToSample(i, p.x(), p.y(), p.z(), s);
-                }
+                const float d = voxels.layer[v] != kUnknown ? values[v] : float(bandWidth);
                 if (d < float(bandWidth)) {
                     values[v] = sign * d * h;
-                    leaf->setValueOn(openvdb::Index(v));
+                    leaf.setValueOn(openvdb::Index(v));
                     any = true;
                 } else {
                     values[v] = sign * background;
                 }
             }
-            if (any) out[i] = std::move(leaf);
+            if (!any) band.out[i].reset();
         }
     });
     auto& tree = levelSet->tree();
-    for (auto& leaf : out) {
+    for (auto& leaf : band.out) {
         if (leaf) tree.addLeaf(leaf.release());
     }
     openvdb::tools::signedFloodFill(tree);
