@@ -6,8 +6,8 @@
 // contiguous loops for the vectorised force kernel — and a rebuild is O(N) (plus small
 // per-bucket sorts) with O(N) memory however far points fly.
 // Every point within one cell edge of a query point is visited exactly once; hash
-// collisions add far-away candidates, which callers reject by distance (the pair force's
-// windows are zero beyond the cutoff, so they reject them for free).
+// collisions add far-away candidates, which callers reject by distance (the force loop
+// tests every candidate against the reach anyway).
 // \see Hoetzlein, "Fast Fixed-Radius Nearest Neighbors", GTC 2014 (counting-sort grid).
 
 #include <algorithm>
