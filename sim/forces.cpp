@@ -56,9 +56,10 @@ void pairForcesAllPairs(const Globules& g, const PairForce& pair, Accelerations&
                       });
 }
 
-void buildGrid(const Globules& g, const PairForce& pair, NeighborGrid& grid) {
-    grid.build(g.px.data(), g.py.data(), g.pz.data(), g.size(),
-               pair.cutoff(2.0f * radiusRange(g).second));
+std::pair<float, float> buildGrid(const Globules& g, const PairForce& pair, NeighborGrid& grid) {
+    const auto range = radiusRange(g);
+    grid.build(g.px.data(), g.py.data(), g.pz.data(), g.size(), pair.cutoff(2.0f * range.second));
+    return range;
 }
 
 namespace {
@@ -141,8 +142,7 @@ void pairForcesSorting(Globules& g, const PairForce& pair, NeighborWorkspace& w,
     const std::size_t n = g.size();
     forces.resize(n);
     if (n == 0) return;
-    const auto [smallest, largest] = radiusRange(g);
-    w.grid.build(g.px.data(), g.py.data(), g.pz.data(), n, pair.cutoff(2.0f * largest));
+    const auto [smallest, largest] = buildGrid(g, pair, w.grid);
     // The accelerations are about to be overwritten: their array is the reorder's scratch
     // (no extra 4 bytes per globule).
     g.permute(w.grid.sortedOrder(), forces.x);

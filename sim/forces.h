@@ -6,6 +6,7 @@
 // The globules themselves are kept in neighbour-grid order (re-sorted every step) rather
 // than copied into it: no second copy of the state (issue 7's memory budget).
 
+#include <utility>
 #include <vector>
 
 #include "globules.h"
@@ -51,7 +52,9 @@ void pairForcesGrid(const Globules& globules, const PairForce& pair,
                     NeighborWorkspace& workspace, Accelerations& forces);
 
 /// Builds @p grid over @p globules with cells one interaction cutoff wide.
-void buildGrid(const Globules& globules, const PairForce& pair, NeighborGrid& grid);
+/// @return the smallest and largest radius (the cutoff follows the largest).
+std::pair<float, float> buildGrid(const Globules& globules, const PairForce& pair,
+                                  NeighborGrid& grid);
 
 /// The ground's penalty force of eq. (9) on one globule, y component (normal +y).
 float groundForce(const GroundSettings& ground, float y, float vy, float radius);

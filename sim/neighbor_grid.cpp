@@ -5,11 +5,9 @@
 
 #include <algorithm>
 
-#if defined(__AVX512F__)
-#include <immintrin.h>
-#endif
 
 #include "errors.h"
+#include "simd_lanes.h"
 
 namespace globular {
 
@@ -42,7 +40,7 @@ uint32_t skipAtMost(const int32_t* cells, uint32_t from, uint32_t last, int32_t 
     const __m512i limit = _mm512_set1_epi32(bound);
     while (from < last) {
         const uint32_t left = last - from;
-        const __mmask16 live = left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1);
+        const __mmask16 live = firstLanes(left);
         const __m512i v = _mm512_maskz_loadu_epi32(live, cells + from);
         const uint32_t below = uint32_t(__builtin_popcount(_mm512_mask_cmple_epi32_mask(live, v, limit)));
         from += below;

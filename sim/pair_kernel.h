@@ -15,11 +15,8 @@
 #include <cstdint>
 #include <vector>
 
-#if defined(__AVX512F__)
-#include <immintrin.h>
-#endif
-
 #include "pair_force.h"
+#include "simd_lanes.h"
 
 namespace globular {
 
@@ -76,7 +73,7 @@ inline void collectGroupCandidates(const GlobuleArrays& s, uint32_t begin, uint3
     };
     for (uint32_t j = begin; j < end; j += 16) {
         const uint32_t left = end - j;
-        const __mmask16 live = left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1);
+        const __mmask16 live = firstLanes(left);
         const __m512 x = _mm512_maskz_loadu_ps(live, s.x + j);
         const __m512 y = _mm512_maskz_loadu_ps(live, s.y + j);
         const __m512 z = _mm512_maskz_loadu_ps(live, s.z + j);
@@ -138,7 +135,7 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
     for (uint32_t j = 0; j < end; j += 16) {
         // The padding past count is readable: plain loads, and a masked test.
         const uint32_t left = end - j;
-        const __mmask16 live = left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1);
+        const __mmask16 live = firstLanes(left);
         const __m512 dx = _mm512_sub_ps(px, _mm512_loadu_ps(c.x.data() + j));
         const __m512 dy = _mm512_sub_ps(py, _mm512_loadu_ps(c.y.data() + j));
         const __m512 dz = _mm512_sub_ps(pz, _mm512_loadu_ps(c.z.data() + j));
@@ -234,7 +231,7 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
         const auto sumAll = [&]<bool Uniform>() {
             for (uint32_t k = 0; k < count; k += 16) {
                 const uint32_t left = count - k;
-                const __mmask16 live = left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1);
+                const __mmask16 live = firstLanes(left);
                 const __m512 dx = _mm512_maskz_loadu_ps(live, bx + k);
                 const __m512 dy = _mm512_maskz_loadu_ps(live, by + k);
                 const __m512 dz = _mm512_maskz_loadu_ps(live, bz + k);

@@ -72,7 +72,9 @@ TEST(Forces, NeighborGridVisitsEveryCloseGlobuleOnce) {
         for (std::size_t j = 0; j < g.size(); ++j) {
             const float dx = g.px[i] - g.px[j], dy = g.py[i] - g.py[j], dz = g.pz[i] - g.pz[j];
             ASSERT_LE(seen[j], 1);
-            if (dx * dx + dy * dy + dz * dz < 16.0f) ASSERT_EQ(seen[j], 1);
+            if (dx * dx + dy * dy + dz * dz < 16.0f) {
+                ASSERT_EQ(seen[j], 1);
+            }
         }
     }
 }

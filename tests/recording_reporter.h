@@ -20,7 +20,9 @@ public:
     void info(std::string_view m) override { infos.emplace_back(m); }
     void warn(std::string_view m) override { warnings.emplace_back(m); }
     void progress(std::string_view stage, long done, long total) override {
-        if (!mExpectedStage.empty()) EXPECT_EQ(stage, mExpectedStage);
+        if (!mExpectedStage.empty()) {
+            EXPECT_EQ(stage, mExpectedStage);
+        }
         steps.emplace_back(done, total);
     }
 
