@@ -13,8 +13,10 @@
 #include <numeric>
 #include <string>
 
-#include "atomic_file.h"
 #include "errors.h"
+#include "file_bytes.h"
+#include "isolated_parse.h"
+#include "vdb_archive.h"
 
 namespace globular {
 
@@ -41,148 +43,8 @@ void checkArraySizes(const fs::path& path, const Globules& g) {
     }
 }
 
-// OpenVDB trusts its input: a truncated or corrupted file trips assertions or reads
-// garbage sizes. So before OpenVDB sees a file, its layout is checked here (header,
-// file metadata, grid descriptors and their extents), and files written by
-// writeGlobuleVdb also carry a checksum of everything after the file metadata, in the
-// file-level string metadata kChecksumKey (16 hex digits; other tools ignore it).
-
-constexpr const char* kChecksumKey = "globular_checksum";
-constexpr std::size_t kChecksumDigits = 16;
-constexpr int64_t kVdbMagic = 0x56444220;    // "VDB "
-constexpr uint32_t kOldestVdbVersion = 222;  // OpenVDB reads nothing older
-
-/// Bounds-checked little-endian reads from file bytes.
-struct ByteReader {
-    const std::string& bytes;
-    std::size_t pos = 0;
-
-    void need(uint64_t n) const {
-        if (n > bytes.size() - pos) throw std::runtime_error("file is truncated");
-    }
-    template <typename T>
-    T read() {
-        need(sizeof(T));
-        T v;
-        std::memcpy(&v, bytes.data() + pos, sizeof v);
-        pos += sizeof v;
-        return v;
-    }
-    void skip(uint64_t n) {
-        need(n);
-        pos += n;
-    }
-    std::string readString() {
-        const uint32_t n = read<uint32_t>();
-        need(n);
-        pos += n;
-        return bytes.substr(pos - n, n);
-    }
-};
-
-struct VdbLayout {
-    std::size_t gridsOffset = 0;                     ///< first byte after file metadata
-    std::size_t checksumOffset = std::string::npos;  ///< hex digits of kChecksumKey
-};
-
-/// @throw std::runtime_error saying what is wrong with the layout of a VDB file.
-VdbLayout scanVdbLayout(const std::string& bytes) {
-    ByteReader in{bytes};
-    if (bytes.size() < sizeof(int64_t) || in.read<int64_t>() != kVdbMagic) {
-        throw std::runtime_error("not a VDB file");
-    }
-    const uint32_t version = in.read<uint32_t>();
-    if (version < kOldestVdbVersion) {
-        throw std::runtime_error("VDB file format " + std::to_string(version) + " is too old");
-    }
-    in.skip(2 * sizeof(uint32_t));  // library version
-    const bool hasGridOffsets = in.read<char>() != 0;
-    in.skip(36);  // UUID
-    VdbLayout layout;
-    const int32_t metadataCount = in.read<int32_t>();
-    for (int32_t m = 0; m < metadataCount; ++m) {
-        const std::string name = in.readString(), type = in.readString();
-        const uint32_t size = in.read<uint32_t>();
-        if (name == kChecksumKey && type == "string" && size == kChecksumDigits) {
-            layout.checksumOffset = in.pos;
-        }
-        in.skip(size);
-    }
-    layout.gridsOffset = in.pos;
-    const int32_t gridCount = in.read<int32_t>();
-    if (gridCount < 0) throw std::runtime_error("negative grid count");
-    if (!hasGridOffsets) return layout;  // a streamed file: grids follow back to back
-    for (int32_t g = 0; g < gridCount; ++g) {
-        in.readString();  // unique name
-        in.readString();  // grid type
-        in.readString();  // instance parent
-        const auto gridPos = in.read<int64_t>(), blockPos = in.read<int64_t>(),
-                   endPos = in.read<int64_t>();
-        if (!(int64_t(in.pos) <= gridPos && gridPos <= blockPos && blockPos <= endPos)) {
-            throw std::runtime_error("grid descriptor " + std::to_string(g) + " is corrupt");
-        }
-        if (uint64_t(endPos) > bytes.size()) {
-            throw std::runtime_error("file is truncated (grid " + std::to_string(g) +
-                                     " ends at byte " + std::to_string(endPos) + " of " +
-                                     std::to_string(bytes.size()) + ")");
-        }
-        in.pos = std::size_t(endPos);
-    }
-    return layout;
-}
-
-/// 64-bit FNV-1a over 8-byte words (then the tail bytes): fast, and any flipped bit,
-/// cut or shifted block changes it.
-std::string checksumHex(const std::string& bytes, std::size_t begin) {
-    uint64_t h = 0xcbf29ce484222325ull;
-    constexpr uint64_t kPrime = 0x100000001b3ull;
-    std::size_t i = begin;
-    for (; i + 8 <= bytes.size(); i += 8) {
-        uint64_t w;
-        std::memcpy(&w, bytes.data() + i, 8);
-        h = (h ^ w) * kPrime;
-    }
-    for (; i < bytes.size(); ++i) h = (h ^ uint8_t(bytes[i])) * kPrime;
-    std::string hex(kChecksumDigits, '0');
-    for (std::size_t d = 0; d < kChecksumDigits; ++d, h >>= 4) {
-        hex[kChecksumDigits - 1 - d] = "0123456789abcdef"[h & 15];
-    }
-    return hex;
-}
-
-std::string readBytes(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error(std::strerror(errno));
-    std::string bytes(fs::file_size(path), '\0');
-    in.read(bytes.data(), std::streamsize(bytes.size()));
-    if (std::size_t(in.gcount()) != bytes.size()) throw std::runtime_error("read failed");
-    return bytes;
-}
-
-/// Fills in the checksum placeholder of a VDB file just written.
-void sealChecksum(const fs::path& path) {
-    const std::string bytes = readBytes(path);
-    const VdbLayout layout = scanVdbLayout(bytes);
-    if (layout.checksumOffset == std::string::npos) {
-        throw std::runtime_error("checksum placeholder missing");
-    }
-    std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
-    file.seekp(std::streamoff(layout.checksumOffset));
-    file.write(checksumHex(bytes, layout.gridsOffset).data(), kChecksumDigits);
-    file.flush();
-    if (!file) throw std::runtime_error("cannot write checksum");
-}
-
-/// @throw std::runtime_error when the file at @p path is not an intact VDB file.
-void verifyVdbFile(const fs::path& path) {
-    const std::string bytes = readBytes(path);
-    const VdbLayout layout = scanVdbLayout(bytes);
-    if (layout.checksumOffset == std::string::npos) return;  // not ours: layout only
-    if (bytes.compare(layout.checksumOffset, kChecksumDigits,
-                      checksumHex(bytes, layout.gridsOffset)) != 0) {
-        throw std::runtime_error("file is corrupt (checksum mismatch)");
-    }
-}
+/// Caches larger than this are refused before they are read (1e8 globules take 4 GB).
+constexpr uint64_t kMaxCacheBytes = uint64_t(16) << 30;
 
 /// @brief Positions of the struct of arrays in the shape OpenVDB's PointPartitioner and
 /// createPointDataGrid read, so nothing is copied into a vector of Vec3.
@@ -315,15 +177,17 @@ void readLeaf(const Leaf& leaf, const openvdb::math::Transform& xform, std::size
 }
 
 /// @brief Globules of a point grid, ordered by id so that a cache reads back in the
-/// same order whatever spatial order the grid stored them in.
+/// same order whatever spatial order the grid stored them in. Serial: it runs in a
+/// reader's child process, which must not use TBB.
 Globules globulesOf(const vdbp::PointDataGrid& grid) {
     const auto& tree = grid.tree();
-    openvdb::tree::LeafManager<const vdbp::PointDataTree> leaves(tree);
+    openvdb::tree::LeafManager<const vdbp::PointDataTree> leaves(tree, 0, /*serial=*/true);
     std::vector<std::size_t> start(leaves.leafCount() + 1, 0);
     for (std::size_t l = 0; l < leaves.leafCount(); ++l) {
         start[l + 1] = start[l] + leaves.leaf(l).pointCount();
     }
     const std::size_t n = start.back();
+    if (n > std::size_t(INT32_MAX)) throw std::runtime_error("more than 2^31 points");
     Globules out;
     for (auto* a : {&out.px, &out.py, &out.pz, &out.vx, &out.vy, &out.vz}) a->assign(n, 0.0f);
     out.radius.assign(n, 1.0f);
@@ -331,8 +195,9 @@ Globules globulesOf(const vdbp::PointDataGrid& grid) {
     out.id.resize(n);
     std::iota(out.id.begin(), out.id.end(), 0);
 
-    leaves.foreach (
-        [&](const Leaf& leaf, std::size_t l) { readLeaf(leaf, grid.transform(), start[l], out); });
+    for (std::size_t l = 0; l < leaves.leafCount(); ++l) {
+        readLeaf(leaves.leaf(l), grid.transform(), start[l], out);
+    }
 
     std::vector<uint32_t> order(n);
     std::iota(order.begin(), order.end(), 0u);
@@ -340,6 +205,89 @@ Globules globulesOf(const vdbp::PointDataGrid& grid) {
                      [&](uint32_t a, uint32_t b) { return out.id[a] < out.id[b]; });
     out.permute(order);
     return out;
+}
+
+// What a reader's child process sends back: count, frame, time, then the arrays.
+struct Packet {
+    std::string bytes;
+    template <typename T>
+    void value(const T& v) {
+        bytes.append(reinterpret_cast<const char*>(&v), sizeof v);
+    }
+    template <typename T>
+    void array(const std::vector<T>& v) {
+        bytes.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+    }
+};
+
+std::string packGlobules(const Globules& g, const CacheInfo& info) {
+    Packet p;
+    p.value(uint64_t(g.size()));
+    p.value(int32_t(info.frame));
+    p.value(info.time);
+    for (const auto* a : {&g.px, &g.py, &g.pz, &g.vx, &g.vy, &g.vz, &g.radius, &g.mass}) {
+        p.array(*a);
+    }
+    p.array(g.id);
+    return std::move(p.bytes);
+}
+
+/// @throw std::runtime_error when @p bytes are not exactly one packet.
+Globules unpackGlobules(const std::string& bytes, CacheInfo& info) {
+    std::size_t pos = 0;
+    const auto take = [&](void* to, std::size_t size) {
+        if (size > bytes.size() - pos) throw std::runtime_error("short answer from the reader");
+        std::memcpy(to, bytes.data() + pos, size);
+        pos += size;
+    };
+    uint64_t n = 0;
+    int32_t frame = 0;
+    take(&n, sizeof n);
+    take(&frame, sizeof frame);
+    take(&info.time, sizeof info.time);
+    info.frame = frame;
+    const uint64_t perGlobule = 8 * sizeof(float) + sizeof(int32_t);
+    if (n > (bytes.size() - pos) / perGlobule || n * perGlobule != bytes.size() - pos) {
+        throw std::runtime_error("answer of the wrong size from the reader");
+    }
+    Globules g;
+    for (auto* a : {&g.px, &g.py, &g.pz, &g.vx, &g.vy, &g.vz, &g.radius, &g.mass}) {
+        a->resize(n);
+        take(a->data(), n * sizeof(float));
+    }
+    g.id.resize(n);
+    take(g.id.data(), n * sizeof(int32_t));
+    return g;
+}
+
+/// Runs in the reader's child process: OpenVDB parses the file there.
+std::string parseCache(const fs::path& path) {
+    openvdb::io::File file(path.string());
+    // No delayed loading: a memory-mapped, truncated file would fault on access.
+    file.open(/*delayLoad=*/false);
+    if (!file.hasGrid(kGridName)) {
+        std::string names;
+        for (auto it = file.beginName(); it != file.endName(); ++it) {
+            names += (names.empty() ? "" : ", ") + *it;
+        }
+        throw std::runtime_error(std::string("no grid named '") + kGridName +
+                                 "' (grids: " + (names.empty() ? "none" : names) + ")");
+    }
+    const openvdb::GridBase::Ptr base = file.readGrid(kGridName);
+    file.close();
+    const auto grid = openvdb::gridPtrCast<vdbp::PointDataGrid>(base);
+    if (!grid) {
+        throw std::runtime_error(std::string("grid '") + kGridName + "' is a " + base->type() +
+                                 ", not a point data grid");
+    }
+    CacheInfo info;
+    if (auto frame = grid->getMetadata<openvdb::Int32Metadata>("frame")) {
+        info.frame = frame->value();
+    }
+    if (auto time = grid->getMetadata<openvdb::DoubleMetadata>("time")) {
+        info.time = time->value();
+    }
+    return packGlobules(globulesOf(*grid), info);
 }
 
 }  // namespace
@@ -355,13 +303,7 @@ void writeGlobuleVdb(const fs::path& path, const Globules& globules, const Cache
     } catch (const std::exception& e) {
         throw IoError("cannot write " + path.string() + ": " + e.what());
     }
-    writeAtomically(path, [&](const fs::path& temporary) {
-        openvdb::MetaMap fileMetadata;
-        fileMetadata.insertMeta(kChecksumKey,
-                                openvdb::StringMetadata(std::string(kChecksumDigits, '0')));
-        openvdb::io::File(temporary.string()).write(openvdb::GridCPtrVec{grid}, fileMetadata);
-        sealChecksum(temporary);
-    });
+    writeVdbFile(path, openvdb::GridCPtrVec{grid});
 }
 
 Globules readGlobuleVdb(const fs::path& path, CacheInfo* info) {
@@ -369,41 +311,17 @@ Globules readGlobuleVdb(const fs::path& path, CacheInfo* info) {
     const auto fail = [&](const std::string& what) {
         return IoError("cannot read " + path.string() + ": " + what);
     };
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) throw fail("no such file");
     try {
-        verifyVdbFile(path);
-        openvdb::io::File file(path.string());
-        // No delayed loading: a memory-mapped, truncated file would fault on access.
-        file.open(/*delayLoad=*/false);
-        if (!file.hasGrid(kGridName)) {
-            std::string names;
-            for (auto it = file.beginName(); it != file.endName(); ++it) {
-                names += (names.empty() ? "" : ", ") + *it;
-            }
-            throw fail(std::string("no grid named '") + kGridName +
-                       "' (grids: " + (names.empty() ? "none" : names) + ")");
-        }
-        const openvdb::GridBase::Ptr base = file.readGrid(kGridName);
-        file.close();
-        const auto grid = openvdb::gridPtrCast<vdbp::PointDataGrid>(base);
-        if (!grid) {
-            throw fail(std::string("grid '") + kGridName + "' is a " + base->type() +
-                       ", not a point data grid");
-        }
-        Globules globules = globulesOf(*grid);
-        if (info) {
-            *info = CacheInfo{};
-            if (auto frame = grid->getMetadata<openvdb::Int32Metadata>("frame")) {
-                info->frame = frame->value();
-            }
-            if (auto time = grid->getMetadata<openvdb::DoubleMetadata>("time")) {
-                info->time = time->value();
-            }
-        }
+        checkVdbBytes(readFileBytes(path, kMaxCacheBytes));
+    } catch (const std::exception& e) {
+        throw fail(e.what());
+    }
+    const std::string answer = parseInChild(path, [&] { return parseCache(path); });
+    try {
+        CacheInfo read;
+        Globules globules = unpackGlobules(answer, read);
+        if (info) *info = read;
         return globules;
-    } catch (const IoError&) {
-        throw;  // already names the file
     } catch (const std::exception& e) {
         throw fail(e.what());
     }

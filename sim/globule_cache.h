@@ -33,9 +33,11 @@ Globules readGlobuleVdb(const std::filesystem::path& path, CacheInfo* info = nul
 
 /// Binary PLY: x y z vx vy vz radius (float) id (int).
 void writeGlobulePly(const std::filesystem::path& path, const Globules& globules);
-/// Reads a PLY point cloud (ascii or binary little endian). Vertex properties x y z are
-/// required; vx vy vz radius id optional (defaults: 0, @p defaultRadius, index).
-/// @throw IoError naming @p path and what is wrong.
+/// Reads a PLY point cloud (ascii, binary little or big endian; ply_reader.h). Vertex
+/// properties x y z are required; vx vy vz radius id optional (defaults: 0,
+/// @p defaultRadius, index).
+/// @throw IoError naming @p path and what is wrong, also for a globule with a
+///        non-finite position or velocity or a radius that is not positive and finite.
 Globules readGlobulePly(const std::filesystem::path& path, float defaultRadius = 1.0f);
 
 }  // namespace globular

@@ -12,7 +12,8 @@
 #include <string>
 
 #include "atomic_file.h"
-#include "ply_types.h"
+#include "file_bytes.h"
+#include "ply_reader.h"
 #include "errors.h"
 
 namespace globular {
@@ -150,255 +151,111 @@ void writeMeshObj(const fs::path& path, const TriangleMesh& mesh) {
 }
 
 // ---------------------------------------------------------------------------------------
-// PLY reading
+// PLY reading (the header and the bounded walk through the data: ply_reader.h)
 
 namespace {
 
-struct PlyProperty {
-    std::string name;
-    PlyType type = PlyType::None;       ///< value type (of the items, for a list)
-    PlyType countType = PlyType::None;  ///< None unless a list
-};
+/// Meshes larger than this are refused before they are read.
+constexpr uint64_t kMaxMeshBytes = uint64_t(16) << 30;
 
-struct PlyElement {
-    std::string name;
-    std::size_t count = 0;
-    std::vector<PlyProperty> properties;
-};
-
-/// Walks the body of a PLY file value by value, in ascii or binary.
-class PlyCursor {
-  public:
-    PlyCursor(const fs::path& path, const std::string& data, std::size_t offset, bool ascii,
-              bool bigEndian)
-        : mPath(path), mData(data), mPos(offset), mAscii(ascii), mBigEndian(bigEndian) {}
-
-    double read(PlyType type) {
-        if (mAscii) return readAscii();
-        const std::size_t size = plyTypeSize(type);
-        if (mPos + size > mData.size()) fail("truncated: the file ends inside its data");
-        unsigned char bytes[8];
-        std::memcpy(bytes, mData.data() + mPos, size);
-        mPos += size;
-        if (mBigEndian) std::reverse(bytes, bytes + size);
-        switch (type) {
-            case PlyType::Int8:
-                return double(int8_t(bytes[0]));
-            case PlyType::UInt8:
-                return double(bytes[0]);
-            case PlyType::Int16:
-                return decode<int16_t>(bytes);
-            case PlyType::UInt16:
-                return decode<uint16_t>(bytes);
-            case PlyType::Int32:
-                return decode<int32_t>(bytes);
-            case PlyType::UInt32:
-                return decode<uint32_t>(bytes);
-            case PlyType::Float32:
-                return decode<float>(bytes);
-            case PlyType::Float64:
-                return decode<double>(bytes);
-            case PlyType::None:
-                break;
+void readVertices(const PlyElement& element, PlyCursor& cursor, TriangleMesh& mesh,
+                  bool& hasNormals) {
+    const int x = element.find({"x"}), y = element.find({"y"}), z = element.find({"z"});
+    const int nx = element.find({"nx"}), ny = element.find({"ny"}), nz = element.find({"nz"});
+    if (x < 0 || y < 0 || z < 0) throw std::runtime_error("vertex element lacks x, y or z");
+    hasNormals = nx >= 0 && ny >= 0 && nz >= 0;
+    mesh.positions.reserve(3 * element.count);
+    if (hasNormals) mesh.normals.reserve(3 * element.count);
+    std::vector<double> record(element.properties.size());
+    for (uint64_t v = 0; v < element.count; ++v) {
+        for (std::size_t k = 0; k < element.properties.size(); ++k) {
+            const PlyProperty& p = element.properties[k];
+            if (p.isList()) {
+                cursor.skip(p);
+            } else {
+                record[k] = cursor.read(p.type);
+            }
         }
-        fail("unknown property type");
-    }
-
-    std::size_t remaining() const { return mData.size() - mPos; }
-
-    [[noreturn]] void fail(const std::string& problem) const {
-        throw IoError("cannot read mesh " + mPath.string() + ": " + problem);
-    }
-
-  private:
-    template <typename T>
-    static double decode(const unsigned char* bytes) {
-        T value;
-        std::memcpy(&value, bytes, sizeof value);
-        return double(value);
-    }
-
-    double readAscii() {
-        while (mPos < mData.size() && std::isspace(static_cast<unsigned char>(mData[mPos]))) {
-            ++mPos;
+        for (int k : {x, y, z}) {
+            if (!std::isfinite(record[k])) {
+                throw std::runtime_error("vertex " + std::to_string(v) + " is not finite");
+            }
+            mesh.positions.push_back(float(record[k]));
         }
-        if (mPos >= mData.size()) fail("truncated: fewer values than the header declares");
-        double value = 0;
-        const char* begin = mData.data() + mPos;
-        auto [end, ec] = std::from_chars(begin, mData.data() + mData.size(), value);
-        if (ec != std::errc()) {
-            fail("bad number '" + std::string(begin, std::min<std::size_t>(16, remaining())) + "'");
-        }
-        mPos += std::size_t(end - begin);
-        return value;
-    }
-
-    const fs::path& mPath;
-    const std::string& mData;
-    std::size_t mPos;
-    bool mAscii, mBigEndian;
-};
-
-int findProperty(const PlyElement& element, std::initializer_list<const char*> names) {
-    for (std::size_t i = 0; i < element.properties.size(); ++i) {
-        for (const char* n : names) {
-            if (element.properties[i].name == n) return int(i);
+        if (hasNormals) {
+            for (int k : {nx, ny, nz}) mesh.normals.push_back(float(record[k]));
         }
     }
-    return -1;
+}
+
+void readFaces(const PlyElement& element, PlyCursor& cursor, TriangleMesh& mesh) {
+    int list = -1;
+    for (std::size_t k = 0; k < element.properties.size(); ++k) {
+        const auto& p = element.properties[k];
+        if (p.isList() && (p.name == "vertex_indices" || p.name == "vertex_index")) list = int(k);
+    }
+    if (list < 0) throw std::runtime_error("face element lacks a vertex_indices list");
+    std::vector<uint32_t> polygon;
+    for (uint64_t f = 0; f < element.count; ++f) {
+        for (std::size_t k = 0; k < element.properties.size(); ++k) {
+            const PlyProperty& p = element.properties[k];
+            if (int(k) != list) {
+                cursor.skip(p);
+                continue;
+            }
+            const std::size_t n = cursor.readListLength(p.countType);
+            if (n < 3) {
+                throw std::runtime_error("face " + std::to_string(f) + " has fewer than 3 vertices");
+            }
+            polygon.clear();
+            for (std::size_t i = 0; i < n; ++i) {
+                const double index = cursor.read(p.type);
+                if (!(index >= 0 && index < double(mesh.vertexCount()))) {
+                    throw std::runtime_error(
+                        "face " + std::to_string(f) + " refers to vertex " +
+                        (std::isfinite(index) ? std::to_string(static_cast<long long>(index))
+                                              : std::string("nan")) +
+                        " of " + std::to_string(mesh.vertexCount()));
+                }
+                polygon.push_back(uint32_t(index));
+            }
+            // A fan keeps the polygon's winding and so its facing.
+            for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
+                mesh.triangles.insert(mesh.triangles.end(),
+                                      {polygon[0], polygon[i], polygon[i + 1]});
+            }
+        }
+    }
 }
 
 }  // namespace
 
 TriangleMesh readMeshPly(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw IoError("cannot read mesh " + path.string() + ": no such file or unreadable");
-    const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    auto fail = [&](const std::string& problem) -> void {
-        throw IoError("cannot read mesh " + path.string() + ": " + problem);
-    };
-
-    // Header: one keyword line at a time, up to end_header.
-    std::size_t pos = 0;
-    std::vector<PlyElement> elements;
-    std::string format;
-    bool ended = false, first = true;
-    while (!ended) {
-        const std::size_t eol = data.find('\n', pos);
-        if (eol == std::string::npos) fail("not a PLY file or truncated header");
-        std::string line = data.substr(pos, eol - pos);
-        pos = eol + 1;
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        std::istringstream words(line);
-        std::string keyword;
-        words >> keyword;
-        if (first) {
-            if (keyword != "ply") fail("not a PLY file (no 'ply' magic)");
-            first = false;
-        } else if (keyword == "format") {
-            words >> format;
-        } else if (keyword == "element") {
-            PlyElement e;
-            long long count = -1;
-            words >> e.name >> count;
-            if (!words || count < 0) fail("bad element line '" + line + "'");
-            e.count = std::size_t(count);
-            elements.push_back(e);
-        } else if (keyword == "property") {
-            if (elements.empty()) fail("property before any element");
-            std::string type;
-            words >> type;
-            PlyProperty p;
-            if (type == "list") {
-                std::string countType, itemType;
-                words >> countType >> itemType >> p.name;
-                p.countType = plyTypeNamed(countType);
-                p.type = plyTypeNamed(itemType);
-                if (p.countType == PlyType::None) fail("bad list count type '" + countType + "'");
+    try {
+        const std::string data = readFileBytes(path, kMaxMeshBytes);
+        const PlyHeader header = parsePlyHeader(data);
+        PlyCursor cursor(data, header);
+        TriangleMesh mesh;
+        bool sawVertices = false, hasNormals = false;
+        for (const PlyElement& element : header.elements) {
+            // Refused before anything is allocated when the count cannot fit the file.
+            cursor.checkFits(element);
+            if (element.name == "vertex" && !sawVertices) {
+                sawVertices = true;
+                readVertices(element, cursor, mesh, hasNormals);
+            } else if (element.name == "face") {
+                if (!sawVertices) throw std::runtime_error("face element before the vertex element");
+                readFaces(element, cursor, mesh);
             } else {
-                words >> p.name;
-                p.type = plyTypeNamed(type);
-            }
-            if (p.type == PlyType::None || p.name.empty()) fail("bad property '" + line + "'");
-            elements.back().properties.push_back(p);
-        } else if (keyword == "end_header") {
-            ended = true;
-        } else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty()) {
-            fail("unknown header line '" + line + "'");
-        }
-    }
-    const bool ascii = format == "ascii";
-    if (!ascii && format != "binary_little_endian" && format != "binary_big_endian") {
-        fail("unknown format '" + format + "'");
-    }
-    PlyCursor cursor(path, data, pos, ascii, format == "binary_big_endian");
-
-    TriangleMesh mesh;
-    bool sawVertices = false, hasNormals = false;
-    std::vector<double> record;
-    for (const PlyElement& element : elements) {
-        // Each record holds at least one byte (or one ascii character) per property, so a
-        // count beyond that is a corrupt header, refused before anything is allocated.
-        if (!element.properties.empty() &&
-            element.count > cursor.remaining() / element.properties.size()) {
-            fail("element '" + element.name + "' declares " + std::to_string(element.count) +
-                 " records but the file is too short");
-        }
-        if (element.name == "vertex") {
-            sawVertices = true;
-            const int x = findProperty(element, {"x"}), y = findProperty(element, {"y"}),
-                      z = findProperty(element, {"z"});
-            const int nx = findProperty(element, {"nx"}), ny = findProperty(element, {"ny"}),
-                      nz = findProperty(element, {"nz"});
-            if (x < 0 || y < 0 || z < 0) fail("vertex element lacks x, y or z");
-            hasNormals = nx >= 0 && ny >= 0 && nz >= 0;
-            mesh.positions.reserve(3 * element.count);
-            if (hasNormals) mesh.normals.reserve(3 * element.count);
-            record.resize(element.properties.size());
-            for (std::size_t v = 0; v < element.count; ++v) {
-                for (std::size_t k = 0; k < element.properties.size(); ++k) {
-                    const PlyProperty& p = element.properties[k];
-                    if (p.countType != PlyType::None) {
-                        const double n = cursor.read(p.countType);
-                        for (double i = 0; i < n; ++i) cursor.read(p.type);
-                        continue;
-                    }
-                    record[k] = cursor.read(p.type);
-                }
-                for (int k : {x, y, z}) mesh.positions.push_back(float(record[k]));
-                if (hasNormals) {
-                    for (int k : {nx, ny, nz}) mesh.normals.push_back(float(record[k]));
-                }
-            }
-        } else if (element.name == "face") {
-            if (!sawVertices) fail("face element before the vertex element");
-            const int list = findProperty(element, {"vertex_indices", "vertex_index"});
-            if (list < 0 || element.properties[list].countType == PlyType::None) {
-                fail("face element lacks a vertex_indices list");
-            }
-            std::vector<uint32_t> polygon;
-            for (std::size_t f = 0; f < element.count; ++f) {
-                for (std::size_t k = 0; k < element.properties.size(); ++k) {
-                    const PlyProperty& p = element.properties[k];
-                    if (p.countType == PlyType::None) {
-                        cursor.read(p.type);
-                        continue;
-                    }
-                    const double n = cursor.read(p.countType);
-                    if (int(k) != list) {
-                        for (double i = 0; i < n; ++i) cursor.read(p.type);
-                        continue;
-                    }
-                    if (n < 3) fail("face " + std::to_string(f) + " has fewer than 3 vertices");
-                    polygon.clear();
-                    for (double i = 0; i < n; ++i) {
-                        const double index = cursor.read(p.type);
-                        if (!(index >= 0 && index < double(mesh.vertexCount()))) {
-                            fail("face " + std::to_string(f) + " refers to vertex " +
-                                 std::to_string(static_cast<long long>(index)) + " of " +
-                                 std::to_string(mesh.vertexCount()));
-                        }
-                        polygon.push_back(uint32_t(index));
-                    }
-                    // A fan keeps the polygon's winding and so its facing.
-                    for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
-                        mesh.triangles.insert(mesh.triangles.end(),
-                                              {polygon[0], polygon[i], polygon[i + 1]});
-                    }
-                }
-            }
-        } else {
-            for (std::size_t r = 0; r < element.count; ++r) {
-                for (const PlyProperty& p : element.properties) {
-                    const double n = p.countType == PlyType::None ? 1 : cursor.read(p.countType);
-                    for (double i = 0; i < n; ++i) cursor.read(p.type);
-                }
+                cursor.skip(element);
             }
         }
+        if (!sawVertices) throw std::runtime_error("no vertex element");
+        if (!hasNormals) computeAreaWeightedNormals(mesh);
+        return mesh;
+    } catch (const std::exception& e) {
+        throw IoError("cannot read mesh " + path.string() + ": " + e.what());
     }
-    if (!sawVertices) fail("no vertex element");
-    if (!hasNormals) computeAreaWeightedNormals(mesh);
-    return mesh;
 }
 
 }  // namespace globular

@@ -3,9 +3,11 @@
 #include <openvdb/io/File.h>
 #include <tbb/parallel_invoke.h>
 
-#include "atomic_file.h"
 #include "errors.h"
+#include "file_bytes.h"
+#include "isolated_parse.h"
 #include "surface_grids.h"
+#include "vdb_archive.h"
 
 namespace globular {
 
@@ -46,13 +48,67 @@ void writeSurfaceVdb(const std::filesystem::path& path, const SurfaceFrame& fram
     if (!frame.grids || !frame.grids->surface || !frame.grids->density) {
         throw IoError("cannot write " + path.string() + ": the frame has no grids");
     }
+    writeVdbFile(path, openvdb::GridCPtrVec{frame.grids->surface, frame.grids->density});
+}
+
+namespace {
+
+/// Surface files larger than this are refused before they are read.
+constexpr uint64_t kMaxSurfaceFileBytes = uint64_t(16) << 30;
+
+openvdb::FloatGrid::Ptr floatGridNamed(const openvdb::GridPtrVec& grids, const std::string& name) {
+    for (const auto& grid : grids) {
+        if (grid && grid->getName() == name) {
+            auto floatGrid = openvdb::gridPtrCast<openvdb::FloatGrid>(grid);
+            if (!floatGrid) {
+                throw std::runtime_error("grid '" + name + "' is a " + grid->type() +
+                                         ", not a float grid");
+            }
+            return floatGrid;
+        }
+    }
+    throw std::runtime_error("no grid named '" + name + "'");
+}
+
+/// Runs in the reader's child process: OpenVDB parses the file there, and what it read
+/// goes back to the parent in OpenVDB's own streamed encoding.
+std::string parseSurfaceFile(const std::filesystem::path& path) {
+    openvdb::io::File file(path.string());
+    file.open(/*delayLoad=*/false);
+    openvdb::GridPtrVec grids;
+    for (const char* name : {"surface", "density"}) {
+        if (!file.hasGrid(name)) throw std::runtime_error(std::string("no grid named '") + name + "'");
+        grids.push_back(file.readGrid(name));
+    }
+    file.close();
+    const auto surface = floatGridNamed(grids, "surface");
+    if (surface->getGridClass() != openvdb::GRID_LEVEL_SET) {
+        throw std::runtime_error("grid 'surface' is not a level set");
+    }
+    floatGridNamed(grids, "density");
+    return encodeVdb(openvdb::GridCPtrVec(grids.begin(), grids.end()), openvdb::MetaMap(),
+                     /*seekable=*/false);
+}
+
+}  // namespace
+
+SurfaceGrids readSurfaceVdb(const std::filesystem::path& path) {
     openvdb::initialize();
-    writeAtomically(path, [&](const std::filesystem::path& temporary) {
-        openvdb::GridPtrVec grids{frame.grids->surface, frame.grids->density};
-        openvdb::io::File file(temporary.string());
-        file.write(grids);
-        file.close();
-    });
+    const auto fail = [&](const std::string& what) {
+        return IoError("cannot read " + path.string() + ": " + what);
+    };
+    try {
+        checkVdbBytes(readFileBytes(path, kMaxSurfaceFileBytes));
+    } catch (const std::exception& e) {
+        throw fail(e.what());
+    }
+    const std::string answer = parseInChild(path, [&] { return parseSurfaceFile(path); });
+    try {
+        const auto grids = decodeStreamedVdb(answer);
+        return SurfaceGrids{floatGridNamed(*grids, "surface"), floatGridNamed(*grids, "density")};
+    } catch (const std::exception& e) {
+        throw fail(e.what());
+    }
 }
 
 void writeSurfaceMesh(const std::filesystem::path& path, const TriangleMesh& mesh,

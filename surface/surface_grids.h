@@ -11,6 +11,7 @@
 #include <openvdb/openvdb.h>
 
 #include <cstddef>
+#include <filesystem>
 #include <limits>
 #include <vector>
 
@@ -26,6 +27,12 @@ struct SurfaceGrids {
     openvdb::FloatGrid::Ptr surface;  ///< narrow-band level set, class "level set"
     openvdb::FloatGrid::Ptr density;  ///< fog volume in [0, 1], class "fog volume"
 };
+
+/// Reads the grids "surface" and "density" of a file written by writeSurfaceVdb (or any
+/// VDB file with float grids of those names, "surface" a level set). OpenVDB parses the
+/// file in a child process (isolated_parse.h), so a damaged file is an error, never a
+/// crash. @throw IoError naming @p path and what is wrong.
+SurfaceGrids readSurfaceVdb(const std::filesystem::path& path);
 
 /// The metaball field: the sum over globules of kernel(r^2 / R^2), R = influence * radius.
 /// Only voxels within some globule's influence sphere are active (value > 0); the

@@ -123,6 +123,11 @@ void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx) {
     report.progress("surface", 0, total);
     std::atomic<int> next{ctx.firstFrame};
     std::atomic<bool> failed{false};
+    // A failed frame must not throw through parallel_for: TBB would cancel the other
+    // frames' nested parallel steps midway and let them run on with half-built grids.
+    // The first failure in frame order is reported once every frame in flight is done.
+    std::exception_ptr firstError;
+    int firstErrorFrame = ctx.lastFrame + 1;
     tbb::parallel_for(0, inFlight, [&](int) {
         for (int f = next++; f <= ctx.lastFrame && !failed; f = next++) {
             try {
@@ -142,11 +147,16 @@ void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx) {
                     report.progress("surface", ++done, total);
                 });
             } catch (...) {
+                std::lock_guard lock(reportMutex);
+                if (f < firstErrorFrame) {
+                    firstError = std::current_exception();
+                    firstErrorFrame = f;
+                }
                 failed = true;
-                throw;
             }
         }
     });
+    if (firstError) std::rethrow_exception(firstError);
 }
 
 }  // namespace globular

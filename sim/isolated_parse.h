@@ -1,0 +1,29 @@
+#pragma once
+// Parsing a file that anyone may have damaged, in a child process. OpenVDB trusts its
+// input: a damaged file can make it fault, abort inside the allocator or loop, and no
+// amount of checking before it reads can cover every byte. So the parse runs in a forked
+// child; a crash, a timeout or a memory limit there becomes an IoError naming the file,
+// and the run goes on or stops cleanly.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace globular {
+
+struct ChildLimits {
+    double seconds = 0;        ///< wall time; 0 = 60 s plus 1 s per 10 MB of the file
+    uint64_t memoryBytes = 0;  ///< address space the child may add; 0 = half of RAM
+};
+
+/// Runs @p parse in a forked child and @return the bytes it returned. The child is a copy
+/// of this process with only the calling thread: @p parse must not use TBB or start
+/// threads. What it returns must be re-validated by the caller like any input.
+/// @throw IoError "cannot read PATH: ..." with the message of an exception @p parse threw,
+///        or saying that the reader crashed (and with which signal), ran out of time or
+///        memory, or that no child could be started.
+std::string parseInChild(const std::filesystem::path& path,
+                         const std::function<std::string()>& parse, ChildLimits limits = {});
+
+}  // namespace globular
