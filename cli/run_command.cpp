@@ -10,6 +10,7 @@
 #include "atomic_file.h"
 #include "default_scene.h"
 #include "errors.h"
+#include "output_lock.h"
 #include "render_stage.h"
 #include "reporter.h"
 #include "scene.h"
@@ -35,12 +36,17 @@ FrameRange parseFrames(const std::string& text, int frames) {
     std::smatch match;
     static const std::regex pattern(R"(^\s*(\d+)\s*(?:-\s*(\d+)\s*)?$)");
     if (!std::regex_match(text, match, pattern)) {
-        throw SceneError("--frames " + text + ": expected A-B or N, e.g. --frames 1-48");
+        throw SceneError("--frames " + quoteForMessage(text) +
+                         ": expected A-B or N, e.g. --frames 1-48");
     }
-    const long first = std::stol(match[1]);
-    const long last = match[2].matched ? std::stol(match[2]) : first;
+    // Compared as text first: stol would throw on a number past its range.
+    const auto number = [&](const std::string& digits) {
+        return digits.size() > 9 ? long(1e9) : std::stol(digits);
+    };
+    const long first = number(match[1]);
+    const long last = match[2].matched ? number(match[2]) : first;
     if (first < 1 || last < first || last > frames) {
-        throw SceneError("--frames " + text + ": must lie within 1-" + std::to_string(frames) +
+        throw SceneError("--frames " + quoteForMessage(text) + ": must lie within 1-" + std::to_string(frames) +
                          " (the scene has " + std::to_string(frames) + " frames) with A <= B");
     }
     return {int(first), int(last)};
@@ -80,6 +86,9 @@ void runScene(const RunOptions& options, Reporter& reporter) {
             tbb::global_control::max_allowed_parallelism, std::size_t(options.threads));
     }
     ensureWritableDirectory(outDir);
+    // A simulation owns the folder; surface and render runs (farm chunks) may share it.
+    const OutputLock lock(outDir, wants(options.stages, "sim") ? OutputLock::Mode::Exclusive
+                                                                : OutputLock::Mode::Shared);
     const std::string resolved = resolvedSceneToml(scene);
 
     StageContext ctx{outDir, range.first, range.last, &reporter};

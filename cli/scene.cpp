@@ -1,13 +1,18 @@
 #include "scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
+#include "errors.h"
 #include "settings_schema.h"
 
 namespace globular {
 
 namespace {
+
+/// The force's reach max(C_r, C_d) (r_i + r_p) must stay a usable float cell size.
+constexpr double kMinReach = 1e-4, kMaxReach = 1e6;
 
 template <typename Settings>
 SettingsSection describeSection(const std::string& name, Settings& settings) {
@@ -32,6 +37,34 @@ std::size_t sizeOr(const std::vector<std::pair<std::string, std::size_t>>& sizes
         if (n == name) return size;
     }
     return fallback;
+}
+
+/// What the material and the radii derive: the reach of the force (the neighbour grid's
+/// cell) and b2 must be usable numbers, or the error would blame the grid.
+void checkNeighbourReach(const Scene& scene, const SceneSections& sections) {
+    const MaterialSettings& m = scene.material;
+    const SettingsSection& material = *sections.single("material");
+    const double window = std::max(m.resolvedCr(), m.resolvedCd());
+    const std::string windowKeys = material.describeKey("r0") + ", " +
+                                   material.describeKey(m.cr > 0 ? "cr" : "alpha") + " or " +
+                                   material.describeKey(m.cd > 0 ? "cd" : "preset");
+    const double b2 = m.b1 * std::pow(m.r0, m.n - m.m);
+    if (!std::isfinite(float(b2)) || !(std::isfinite(window) && window > 0)) {
+        throw SceneError(windowKeys + ": b2 = b1 r0^(n-m) = " + std::to_string(b2) +
+                         " and the force window " + std::to_string(window) +
+                         " must be finite single-precision numbers");
+    }
+    const auto& emitters = *sections.array("emitter");
+    for (std::size_t k = 0; k < scene.emitters.size(); ++k) {
+        const double reach = window * 2.0 * scene.emitters[k].radius;
+        if (!(reach >= kMinReach && reach <= kMaxReach)) {
+            throw SceneError(emitters[k].describeKey("radius") + " = " +
+                             std::to_string(scene.emitters[k].radius) + " with the window " +
+                             std::to_string(window) + " (" + windowKeys +
+                             ") gives globules a reach of " + std::to_string(reach) +
+                             " world units; it must lie between 1e-4 and 1e6");
+        }
+    }
 }
 
 }  // namespace
@@ -98,6 +131,7 @@ void validateScene(const Scene& scene, const SceneSections& sections, Reporter& 
     for (std::size_t i = 0; i < scene.emitters.size(); ++i) {
         scene.emitters[i].validate(emitterSections[i], reporter);
     }
+    checkNeighbourReach(scene, sections);
     scene.surface.validate();
     scene.render.validate(*sections.single("render"));
     scene.camera.validate(*sections.single("camera"));

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
-#include <functional>
 #include <functional>
 #include <sstream>
 
@@ -20,12 +22,15 @@ namespace globular {
 
 namespace {
 
+/// Scene files larger than this are refused (the biggest real scene is a few KB).
+constexpr std::size_t kMaxSceneBytes = std::size_t(4) << 20;
 
 struct OverridePlaces {
     std::vector<std::pair<std::string, std::string>> byPath;  ///< "material.b1" -> "--set ..."
+    /// The override that set @p path last (the one whose value the scene holds).
     const std::string* find(const std::string& path) const {
-        for (const auto& [p, text] : byPath) {
-            if (p == path) return &text;
+        for (auto it = byPath.rbegin(); it != byPath.rend(); ++it) {
+            if (it->first == path) return &it->second;
         }
         return nullptr;
     }
@@ -126,7 +131,13 @@ bool isUtf8(const std::string& text) {
 
 /// Parses "a.b.c=value" and writes value at that path of @p root.
 void applyOverride(toml::table& root, const std::string& text, OverridePlaces& places) {
-    const std::string where = "--set " + text;
+    const std::string where = "--set " + quoteForMessage(text);
+    // A newline would let the value carry more TOML (a second key, a section) that the
+    // override then drops without a word.
+    if (std::any_of(text.begin(), text.end(),
+                    [](char c) { return static_cast<unsigned char>(c) < 0x20 && c != '\t'; })) {
+        throw SceneError(where + ": an override must be one line without control characters");
+    }
     const auto eq = text.find('=');
     if (eq == std::string::npos || eq == 0) {
         throw SceneError(where + ": expected KEY=VALUE, e.g. --set material.b1=3");
@@ -284,22 +295,47 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
 
 Scene loadScene(const std::filesystem::path& file, const std::vector<std::string>& overrides,
                 Reporter& reporter) {
+    // Reading a scene is part of the command line: what goes wrong is bad usage (exit 2).
+    const std::string name = quoteForMessage(file.string(), 300);
+    std::error_code ec;
+    if (!std::filesystem::exists(file, ec)) throw SceneError("no scene file " + name);
+    if (std::filesystem::is_directory(file, ec)) {
+        throw SceneError("scene " + name + " is a directory, not a scene file");
+    }
     std::ifstream in(file, std::ios::binary);
-    if (!in) throw IoError("cannot open scene file " + file.string());
-    std::stringstream text;
-    text << in.rdbuf();
-    Scene scene = parseScene(text.str(), file.string(), overrides, reporter);
+    if (!in) throw SceneError("cannot open scene file " + name + ": " + std::strerror(errno));
+    // Bounded, and read in pieces: /dev/zero or a pipe is not a scene either.
+    std::string text;
+    char buffer[1 << 16];
+    while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+        text.append(buffer, std::size_t(in.gcount()));
+        if (text.size() > kMaxSceneBytes) {
+            throw SceneError("scene " + name + " is larger than " +
+                             std::to_string(kMaxSceneBytes >> 20) + " MiB; not a scene file");
+        }
+    }
+    if (in.bad()) throw SceneError("cannot read scene file " + name);
+    Scene scene = parseScene(text, file.string(), overrides, reporter);
     scene.file = std::filesystem::absolute(file);
     return scene;
 }
 
 std::string resolvedSceneToml(const Scene& constScene) {
     Scene scene = constScene;  // sections bind mutable fields; write from a copy
+    // Relative paths resolve against the scene file's folder; the resolved scene lives
+    // elsewhere (DIR/scene.toml), so it names them absolutely.
+    for (EmitterSettings& emitter : scene.emitters) {
+        if (!emitter.file.empty() && std::filesystem::path(emitter.file).is_relative()) {
+            emitter.file = (scene.directory() / emitter.file).lexically_normal().string();
+        }
+    }
     std::vector<std::pair<std::string, std::size_t>> sizes;
     SceneSections sections = bindSections(scene, sizes);
     std::ostringstream out;
     out << "# The resolved scene: every key with the value the run used.\n"
-        << "# Source: " << (scene.file.empty() ? "<default scene>" : scene.file.string())
+        << "# Source: "
+        << (scene.file.empty() ? "<default scene>"
+                               : quoteForMessage(scene.file.string(), std::string::npos))
         << "\n";
     const auto everyKey = [](const std::string&) { return true; };
     for (const auto& section : sections.singles) {

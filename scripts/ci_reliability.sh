@@ -2,7 +2,8 @@
 # Reliability checks that CI runs after the normal test suite (issue 6). Three parts,
 # each timed; any crash, sanitizer report, failed test or non-zero exit fails the script.
 #   fuzz  builds the libFuzzer targets with clang (fuzz/, ASan+UBSan) in build-fuzz and
-#         runs each over its seed corpus for FUZZ_SECONDS; crashing inputs are kept in
+#         runs each over its seed corpus for FUZZ_SECONDS (scene, ply, vdb_cache,
+#         surface_vdb, mesh, checkpoint); crashing inputs are kept in
 #         build-fuzz/artifacts/ (add them to fuzz/corpus/ once fixed)
 #   asan  builds the whole test suite with GLOBULAR_SANITIZE=ON (gcc, -O1) in build-asan
 #         and runs ctest there
@@ -57,26 +58,40 @@ fuzz_configure_build() {
     cmake -S "$root" -B "$fuzz_build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ \
         -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
         -DGLOBULAR_FUZZ=ON -DGLOBULAR_TESTS=OFF -DGLOBULAR_BENCH=OFF >/dev/null
-    cmake --build "$fuzz_build" -j "$jobs" --target scene_fuzzer ply_fuzzer
+    cmake --build "$fuzz_build" -j "$jobs" --target scene_fuzzer ply_fuzzer \
+        vdb_cache_fuzzer surface_vdb_fuzzer mesh_fuzzer checkpoint_fuzzer
 }
 
 # fuzz_run NAME: new inputs go to a scratch corpus, so fuzz/corpus/ stays as checked in.
+# fuzz/NAME.dict is passed when there is one. An artifact written during a run that
+# exits 0 fails it too (a reader's child process must not dump crash files).
 fuzz_run() {
-    local name=$1 scratch
+    local name=$1 scratch stamp
     scratch=$(mktemp -d)
+    stamp=$(mktemp)
     mkdir -p "$fuzz_build/artifacts"
+    local dict=()
+    [[ -f "fuzz/$name.dict" ]] && dict=(-dict="fuzz/$name.dict")
     local status=0
     "$fuzz_build/fuzz/${name}_fuzzer" -max_total_time="$fuzz_seconds" -timeout=25 \
-        -rss_limit_mb=2048 -dict="fuzz/$name.dict" -print_final_stats=1 \
+        -rss_limit_mb=2048 "${dict[@]}" -print_final_stats=1 \
         -artifact_prefix="$fuzz_build/artifacts/$name-" "$scratch" "fuzz/corpus/$name" \
         >"$fuzz_build/$name.log" 2>&1 || status=$?
     rm -rf "$scratch"
+    local artifacts
+    artifacts=$(find "$fuzz_build/artifacts" -name "$name-*" -newer "$stamp" -print)
+    rm -f "$stamp"
     grep -E '^(stat::number_of_executed_units|stat::new_units_added|Done )' \
         "$fuzz_build/$name.log" || true
     if ((status != 0)); then
         tail -n 60 "$fuzz_build/$name.log"
         echo "ci_reliability: ${name}_fuzzer failed (exit $status); input kept in" \
             "$fuzz_build/artifacts/, log in $fuzz_build/$name.log" >&2
+        return 1
+    fi
+    if [[ -n "$artifacts" ]]; then
+        echo "ci_reliability: ${name}_fuzzer exited 0 but wrote artifacts (from a child" \
+            "process?):" $artifacts "; log in $fuzz_build/$name.log" >&2
         return 1
     fi
 }
@@ -125,6 +140,10 @@ for part in $parts; do
             timed fuzz-build fuzz_configure_build
             timed fuzz-scene fuzz_run scene
             timed fuzz-ply fuzz_run ply
+            timed fuzz-vdb-cache fuzz_run vdb_cache
+            timed fuzz-surface-vdb fuzz_run surface_vdb
+            timed fuzz-mesh fuzz_run mesh
+            timed fuzz-checkpoint fuzz_run checkpoint
             ;;
         asan)
             timed asan-build asan_configure_build

@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cctype>
+#include <regex>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -17,27 +19,37 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kTemporaryMarker = ".tmp";
+/// ".<name>.globular-tmp-<host>-<pid>-<n>" beside the target: hidden, unmistakably ours,
+/// and it tells which process on which host owns it (a farm's nodes may share a folder).
+constexpr const char* kTemporaryMarker = ".globular-tmp-";
 
-/// ".<name>.tmp<pid>_<n>" beside the target: hidden, and tells which process owns it.
+const std::string& hostName() {
+    static const std::string name = [] {
+        char buffer[256] = {};
+        if (::gethostname(buffer, sizeof buffer - 1) != 0 || buffer[0] == '\0') return std::string("localhost");
+        std::string host(buffer);
+        for (char& c : host) {
+            if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-') c = '_';
+        }
+        return host;
+    }();
+    return name;
+}
+
 fs::path temporaryBeside(const fs::path& target) {
     static std::atomic<unsigned> counter{0};
     return target.parent_path() / ("." + target.filename().string() + kTemporaryMarker +
-                                   std::to_string(::getpid()) + "_" +
+                                   hostName() + "-" + std::to_string(::getpid()) + "-" +
                                    std::to_string(counter++));
 }
 
-/// The owning process id of a temporary's file name, or 0 when it is not one.
+/// The owner of a temporary of ours on this host, or 0 when @p name is not one: exactly
+/// the pattern temporaryBeside makes, nothing that merely looks like it.
 long temporaryOwner(const std::string& name) {
-    if (name.empty() || name[0] != '.') return 0;
-    const auto marker = name.rfind(kTemporaryMarker);
-    const auto underscore = name.rfind('_');
-    if (marker == std::string::npos || underscore == std::string::npos || underscore < marker) {
-        return 0;
-    }
-    const std::string pid = name.substr(marker + 4, underscore - marker - 4);
-    if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos) return 0;
-    return std::stol(pid);
+    static const std::regex pattern(R"(^\..+\.globular-tmp-(.+)-([0-9]{1,9})-([0-9]{1,10})$)");
+    std::smatch match;
+    if (!std::regex_match(name, match, pattern) || match[1] != hostName()) return 0;
+    return std::stol(match[2]);
 }
 
 void syncToDisk(const fs::path& file) {
@@ -53,13 +65,23 @@ void syncToDisk(const fs::path& file) {
 
 std::size_t removeStaleTemporaries(const fs::path& dir) {
     std::size_t removed = 0;
+    const auto sweep = [&](const fs::path& folder) {
+        std::error_code ec;
+        for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+            const long owner = temporaryOwner(it->path().filename().string());
+            std::error_code typeError;
+            if (owner <= 0 || owner == ::getpid() || !it->is_regular_file(typeError)) continue;
+            if (::kill(pid_t(owner), 0) == 0 || errno != ESRCH) continue;  // still running
+            std::error_code ignored;
+            if (fs::remove(it->path(), ignored)) ++removed;
+        }
+    };
+    sweep(dir);
+    // The stages' folders (cache/, surface/, mesh/, frames/): one level down, no deeper.
     std::error_code ec;
-    for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-        const long owner = temporaryOwner(it->path().filename().string());
-        if (owner <= 0 || !it->is_regular_file()) continue;
-        if (::kill(pid_t(owner), 0) == 0 || errno != ESRCH) continue;  // owner still running
-        std::error_code ignored;
-        if (fs::remove(it->path(), ignored)) ++removed;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        std::error_code typeError;
+        if (it->is_directory(typeError) && !it->is_symlink(typeError)) sweep(it->path());
     }
     return removed;
 }

@@ -19,9 +19,11 @@ void writeAtomically(const std::filesystem::path& target,
 /// writeAtomically for text or bytes already in memory.
 void writeFileAtomically(const std::filesystem::path& target, const std::string& contents);
 
-/// Removes temporaries that writeAtomically left in @p dir (recursively) when its process
-/// was killed: only those whose embedded process id is no longer running, so a
-/// concurrent job writing into the same directory keeps its files. @return the count.
+/// Removes temporaries that writeAtomically left in @p dir and its direct subfolders when
+/// its process was killed: only names of exactly our pattern
+/// (".<name>.globular-tmp-<host>-<pid>-<n>") made on this host by a process that is no
+/// longer running, so a concurrent job keeps its files and a user's file that merely
+/// looks like a temporary is never touched. @return the count.
 std::size_t removeStaleTemporaries(const std::filesystem::path& dir);
 
 /// Creates @p dir (and parents) and checks that it is a writable directory.

@@ -73,6 +73,12 @@ public:
 std::unique_ptr<Emitter> makeEmitter(const EmitterSettings& settings, uint64_t seed,
                                      std::size_t index, const std::filesystem::path& sceneDir);
 
+/// Globules an emitter of these settings will make over the run, known before any is
+/// placed (for the memory estimate of all emitters together). A box that is filled
+/// counts its lattice; a points emitter counts 0 (its file bounds it). Saturates at
+/// SIZE_MAX instead of overflowing.
+std::size_t plannedGlobules(const EmitterSettings& settings);
+
 /// Deterministic uniform numbers in [-1, 1) (splitmix64): identical on every platform.
 class Jitter {
 public:

@@ -199,6 +199,18 @@ std::unique_ptr<Emitter> pointsEmitter(const EmitterSettings& s,
 
 }  // namespace
 
+std::size_t plannedGlobules(const EmitterSettings& s) {
+    if (s.type == "points") return 0;
+    if (s.type == "box" && s.count == 0) {
+        const Vec3 extent = s.max - s.min;
+        const auto cells = [&](double e) { return std::floor(e / s.spacing); };
+        const double lattice = cells(extent.x) * cells(extent.y) * cells(extent.z);
+        if (!(lattice >= 0)) return 0;  // NaN: the emitter refuses it when made
+        return lattice >= double(SIZE_MAX) ? SIZE_MAX : std::size_t(lattice);
+    }
+    return std::size_t(std::max<int64_t>(0, s.count));
+}
+
 std::unique_ptr<Emitter> makeEmitter(const EmitterSettings& s, uint64_t seed, std::size_t index,
                                      const std::filesystem::path& sceneDir) {
     Jitter jitter(seed * 0x9e3779b97f4a7c15ull + index);

@@ -39,4 +39,26 @@ public:
     using Error::Error;
 };
 
+/// @p text as an error message may quote it: control characters escaped (a newline
+/// would break the message's one line) and cut after @p limit characters, so a
+/// megabyte of garbage in a value never floods the terminal.
+inline std::string quoteForMessage(const std::string& text, std::size_t limit = 200) {
+    std::string out;
+    for (std::size_t i = 0; i < text.size() && i < limit; ++i) {
+        const unsigned char c = static_cast<unsigned char>(text[i]);
+        if (c == '\n') {
+            out += "\\n";
+        } else if (c < 0x20 || c == 0x7f) {
+            static const char* kHex = "0123456789abcdef";
+            out += std::string("\\x") + kHex[c >> 4] + kHex[c & 15];
+        } else {
+            out += char(c);
+        }
+    }
+    if (text.size() > limit) {
+        out += "... (" + std::to_string(text.size()) + " characters)";
+    }
+    return out;
+}
+
 }  // namespace globular

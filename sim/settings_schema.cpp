@@ -30,7 +30,7 @@ std::string valueText(const SettingValue::Data& data) {
     if (auto* b = std::get_if<bool>(&data)) return *b ? "true" : "false";
     if (auto* i = std::get_if<int64_t>(&data)) return std::to_string(*i);
     if (auto* d = std::get_if<double>(&data)) return formatNumber(*d);
-    if (auto* s = std::get_if<std::string>(&data)) return "\"" + *s + "\"";
+    if (auto* s = std::get_if<std::string>(&data)) return "\"" + quoteForMessage(*s) + "\"";
     std::string text = "[";
     for (double v : std::get<std::vector<double>>(data)) {
         text += (text.size() > 1 ? ", " : "") + formatNumber(v);
@@ -69,8 +69,9 @@ std::size_t editDistance(const std::string& a, const std::string& b) {
 }  // namespace
 
 std::string SourcePlace::describe() const {
-    if (line <= 0) return file;
-    return file + ":" + std::to_string(line) + ":" + std::to_string(column);
+    const std::string name = quoteForMessage(file, 300);
+    if (line <= 0) return name;
+    return name + ":" + std::to_string(line) + ":" + std::to_string(column);
 }
 
 bool NumberRange::contains(double v) const {
@@ -154,6 +155,12 @@ SettingsSection& SettingsSection::text(const std::string& key, std::string& fiel
     e.assign = [&field](const SettingValue& v, const std::string& where) {
         auto* s = std::get_if<std::string>(&v.data);
         if (!s) fail(where, v, "expected a string, got " + typeName(v.data));
+        // A NUL would silently cut a path; other control characters have no place in
+        // a name or path either.
+        if (std::any_of(s->begin(), s->end(),
+                        [](char c) { return static_cast<unsigned char>(c) < 0x20; })) {
+            fail(where, v, "contains a control character (NUL, newline, ...)");
+        }
         field = *s;
     };
     e.current = [&field] { return SettingValue::Data(field); };
@@ -202,7 +209,8 @@ SettingsSection& SettingsSection::vec3(const std::string& key, Vec3& field, Numb
 void SettingsSection::assign(const std::string& key, const SettingValue& value) {
     auto it = std::find_if(mEntries.begin(), mEntries.end(),
                            [&](const Entry& e) { return e.key == key; });
-    const std::string where = value.place.describe() + ": [" + mName + "] key '" + key + "'";
+    const std::string where =
+        value.place.describe() + ": [" + mName + "] key '" + quoteForMessage(key, 80) + "'";
     if (it == mEntries.end()) {
         std::string hint = closestMatch(key, keys());
         throw SceneError(where + ": unknown key" +

@@ -43,12 +43,8 @@ void writeFrame(const Simulation& sim, int frame, const SimStageOptions& options
 }
 
 /// Restores the run in ctx.outDir; @return the last complete frame.
-int resumeFrom(Simulation& sim, const SimStageOptions& options, const StageContext& ctx,
-               std::vector<FrameStats>& stats) {
-    if (std::size_t stale = removeStaleTemporaries(ctx.outDir)) {
-        ctx.report().info("resume: removed " + std::to_string(stale) +
-                          " temporary files left by the interrupted run");
-    }
+int resumeFrom(Simulation& sim, const SimulationSetup& setup, const SimStageOptions& options,
+               const StageContext& ctx, std::vector<FrameStats>& stats) {
     const fs::path statePath = ctx.outDir / "state.bin";
     if (!fs::exists(statePath)) {
         ctx.report().info("resume: no checkpoint in " + ctx.outDir.string() +
@@ -60,6 +56,17 @@ int resumeFrom(Simulation& sim, const SimStageOptions& options, const StageConte
         throw IoError("cannot resume " + ctx.outDir.string() +
                       ": it was simulated from a different scene (or --set overrides); use "
                       "another --out, or run without --resume to start over");
+    }
+    // Every frame ends at exactly (frame - 1) / fps (Simulation::advanceFrame): a
+    // checkpoint whose time disagrees is damaged, and resuming it would rewrite frames
+    // with a state that never existed.
+    const double frameTime = double(checkpoint.frame - 1) / setup.simulation.fps;
+    if (checkpoint.state.time != frameTime) {
+        throw IoError("checkpoint " + statePath.string() + " is damaged: it says frame " +
+                      std::to_string(checkpoint.frame) + " at t = " +
+                      std::to_string(checkpoint.state.time) + " s, but that frame is at t = " +
+                      std::to_string(frameTime) +
+                      " s; run without --resume to start over");
     }
     sim.restoreState(checkpoint.state);
     for (const FrameStats& row : readStatsCsv(ctx.outDir / "stats.csv")) {
@@ -80,17 +87,31 @@ std::size_t estimateSimulationBytes(std::size_t globules) {
 void runSimStage(const SimulationSetup& setup, const SimStageOptions& options,
                  const StageContext& ctx) {
     ensureWritableDirectory(ctx.outDir);
-    Simulation sim(setup);
-    const std::size_t need = estimateSimulationBytes(sim.plannedCount());
-    const std::size_t have = physicalMemoryBytes();
-    if (have > 0 && need > have * 8 / 10) {
-        throw ResourceError("the scene's " + std::to_string(sim.plannedCount()) +
-                            " globules need about " + std::to_string(need >> 20) +
-                            " MiB, more than 80% of this machine's " +
-                            std::to_string(have >> 20) + " MiB");
+    if (std::size_t stale = removeStaleTemporaries(ctx.outDir)) {
+        ctx.report().info("sim: removed " + std::to_string(stale) +
+                          " temporary files left by an interrupted run");
     }
+    // All emitters together, before any of them places a globule.
+    const auto checkMemory = [&](std::size_t globules) {
+        const std::size_t need = globules > SIZE_MAX / 256 ? SIZE_MAX
+                                                            : estimateSimulationBytes(globules);
+        const std::size_t have = physicalMemoryBytes();
+        if (have > 0 && need > have / 10 * 8) {
+            std::string perEmitter;
+            for (std::size_t k = 0; k < setup.emitters.size(); ++k) {
+                perEmitter += (k ? ", " : "") + std::to_string(plannedGlobules(setup.emitters[k]));
+            }
+            throw ResourceError("the scene's emitters make " + std::to_string(globules) +
+                                " globules (per [[emitter]]: " + perEmitter + "), which need about " +
+                                std::to_string(need >> 20) + " MiB, more than 80% of this machine's " +
+                                std::to_string(have >> 20) + " MiB; lower their count or raise spacing");
+        }
+    };
+    checkMemory(Simulation::plannedCount(setup));
+    Simulation sim(setup);
+    checkMemory(sim.plannedCount());  // now with the points files' globules
     std::vector<FrameStats> stats;
-    int done = options.resume ? resumeFrom(sim, options, ctx, stats) : 0;
+    int done = options.resume ? resumeFrom(sim, setup, options, ctx, stats) : 0;
     if (done == 0) {
         stats.clear();
         writeFrame(sim, 1, options, ctx, stats);

@@ -41,7 +41,36 @@ Simulation::Simulation(const SimulationSetup& setup)
     std::size_t planned = plannedCount();
     if (planned > std::size_t(INT32_MAX)) throw ResourceError("more than 2^31 globules requested");
     mGlobules.reserve(planned);
-    for (auto& e : mEmitters) e->emit(0.0, mGlobules, mNextId);
+    for (std::size_t k = 0; k < mEmitters.size(); ++k) emitFrom(k, 0.0);
+}
+
+std::size_t Simulation::plannedCount(const SimulationSetup& setup) {
+    std::size_t total = 0;
+    for (const auto& e : setup.emitters) {
+        const std::size_t n = plannedGlobules(e);
+        total = n > SIZE_MAX - total ? SIZE_MAX : total + n;
+    }
+    return total;
+}
+
+void Simulation::emitFrom(std::size_t k, double time) {
+    const std::size_t before = mGlobules.size();
+    mEmitters[k]->emit(time, mGlobules, mNextId);
+    const Globules& g = mGlobules;
+    for (std::size_t i = before; i < g.size(); ++i) {
+        if (!std::isfinite(g.px[i] + g.py[i] + g.pz[i]) ||
+            !std::isfinite(g.vx[i] + g.vy[i] + g.vz[i])) {
+            const std::string& type = mSetup.emitters[k].type;
+            throw SceneError(
+                "[[emitter]] " + std::to_string(k) + " (type " + type + ") places globule " +
+                std::to_string(i - before) + " at a non-finite position or velocity: its " +
+                (type == "box"     ? "min, max, spacing, jitter or velocity"
+                 : type == "spout" ? "center, spacing, nozzle_radius, jitter, direction or speed"
+                 : type == "helix" ? "center, helix_radius, spacing, jitter or velocity"
+                                   : "offset, jitter or velocity") +
+                " is too large for single-precision positions");
+        }
+    }
 }
 
 std::size_t Simulation::plannedCount() const {
@@ -51,7 +80,7 @@ std::size_t Simulation::plannedCount() const {
 }
 
 void Simulation::step(double dt) {
-    for (auto& e : mEmitters) e->emit(mTime, mGlobules, mNextId);
+    for (std::size_t k = 0; k < mEmitters.size(); ++k) emitFrom(k, mTime);
     // The force computation keeps the globules in neighbour-grid order (see forces.h).
     mIntegrator->step(mGlobules, float(dt),
                       [this](Globules& g, Accelerations& a) { mForces.compute(g, a); });

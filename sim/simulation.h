@@ -57,12 +57,19 @@ public:
     int64_t stepCount() const { return mSteps; }
     /// Globules the emitters will have produced by the end (for memory estimates).
     std::size_t plannedCount() const;
+    /// The same, from the settings alone, before any emitter places a globule (points
+    /// emitters count 0). Saturates at SIZE_MAX.
+    static std::size_t plannedCount(const SimulationSetup& setup);
 
     SimulationState saveState() const;
     /// @throw Error when @p state does not fit this scene (emitter count).
     void restoreState(const SimulationState& state);
 
 private:
+    /// Emits what emitter @p k has due at @p time.
+    /// @throw SceneError naming the emitter when a globule it placed is not finite (a
+    ///        centre, spacing or jitter so large that positions overflow).
+    void emitFrom(std::size_t k, double time);
     /// Index of a non-finite or too-fast globule after a step, or -1.
     long findRunaway() const;
 

@@ -1,12 +1,23 @@
 #include "simulation_settings.h"
 
 #include <cmath>
+#include <sstream>
 
 #include "errors.h"
 #include "reporter.h"
 #include "settings_schema.h"
 
 namespace globular {
+
+namespace {
+
+std::string shortNumber(double v) {
+    std::ostringstream out;
+    out << v;
+    return out.str();
+}
+
+}  // namespace
 
 void SimulationSettings::describe(SettingsSection& s) {
     s.number("dt", dt, NumberRange::positive(), "time step, seconds");
@@ -25,7 +36,10 @@ void SimulationSettings::describe(SettingsSection& s) {
 }
 
 int64_t SimulationSettings::substepsPerFrame() const {
-    return std::max<int64_t>(1, int64_t(std::ceil(1.0 / (fps * dt) - 1e-9)));
+    // In floating point first: dt = 1e-22 must not overflow the integer.
+    const double steps = std::ceil(1.0 / (fps * dt) - 1e-9);
+    if (!(steps < 9e18)) return INT64_MAX;
+    return std::max<int64_t>(1, int64_t(steps));
 }
 
 double SimulationSettings::stepSeconds() const {
@@ -33,9 +47,17 @@ double SimulationSettings::stepSeconds() const {
 }
 
 void SimulationSettings::validate(const SettingsSection& s, Reporter& reporter) const {
-    if (substepsPerFrame() > 1000000) {
-        throw SceneError(s.describeKey("dt") + ": " + std::to_string(substepsPerFrame()) +
-                         " steps per frame is more than the limit of 1000000");
+    // Limits on what dt and fps derive, checked after the derivation.
+    const double frameSeconds = 1.0 / fps;
+    if (!(frameSeconds >= kMinFrameSeconds && frameSeconds <= kMaxFrameSeconds)) {
+        throw SceneError(s.describeKey("fps") + ": frames of " + shortNumber(frameSeconds) +
+                         " s; a frame must last between 1e-06 s and 3600 s");
+    }
+    const double steps = 1.0 / (fps * dt);
+    if (!(steps <= double(kMaxStepsPerFrame))) {
+        throw SceneError(s.describeKey("dt") + ": " + shortNumber(steps) +
+                         " steps per frame (at fps " + shortNumber(fps) +
+                         ") is more than the limit of " + std::to_string(kMaxStepsPerFrame));
     }
     if (std::abs(stepSeconds() - dt) > 1e-6 * dt) {
         reporter.info("dt " + std::to_string(dt) + " s does not divide a frame; using " +

@@ -12,6 +12,9 @@ class SettingsSection;
 class Reporter;
 
 struct SimulationSettings {
+    static constexpr int64_t kMaxStepsPerFrame = 1000000;
+    static constexpr double kMinFrameSeconds = 1e-6, kMaxFrameSeconds = 3600;
+
     double dt = 0.001;                 ///< time step, seconds (paper: 0.001)
     double fps = 25;                   ///< frames per second of the output
     int64_t frames = 150;              ///< frames written, the first being the initial state
@@ -23,6 +26,8 @@ struct SimulationSettings {
     std::string onExplosion = "stop";  ///< stop | substep (retry the frame with smaller steps)
 
     void describe(SettingsSection& section);
+    /// Also the derived quantities: steps per frame at most kMaxStepsPerFrame, a frame
+    /// lasting between kMinFrameSeconds and kMaxFrameSeconds.
     void validate(const SettingsSection& section, Reporter& reporter) const;
 
     /// Steps per frame: the smallest count whose step does not exceed dt.

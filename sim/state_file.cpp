@@ -1,17 +1,22 @@
 #include "state_file.h"
 
+#include <cmath>
 #include <cstring>
-#include <fstream>
 #include <vector>
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "file_bytes.h"
 
 namespace globular {
 
 namespace {
 
-constexpr char kMagic[8] = {'G', 'L', 'B', 'S', 'T', 'A', 'T', '1'};
+// Version 2 ends with a checksum of everything before it; version 1 had none.
+constexpr char kMagic[8] = {'G', 'L', 'B', 'S', 'T', 'A', 'T', '2'};
+constexpr char kOldMagic[8] = {'G', 'L', 'B', 'S', 'T', 'A', 'T', '1'};
+/// Checkpoints larger than this are refused before they are read.
+constexpr uint64_t kMaxCheckpointBytes = uint64_t(16) << 30;
 
 class Writer {
 public:
@@ -58,6 +63,15 @@ public:
         throw IoError("checkpoint " + mPath.string() + " is unreadable: " + why);
     }
     bool atEnd() const { return mOffset == mBytes.size(); }
+    /// Drops the trailing checksum after checking it.
+    void checkAndDropChecksum() {
+        if (mBytes.size() < sizeof(kMagic) + sizeof(uint64_t)) fail("truncated");
+        uint64_t stored;
+        const std::size_t payload = mBytes.size() - sizeof stored;
+        std::memcpy(&stored, mBytes.data() + payload, sizeof stored);
+        mBytes.resize(payload);
+        if (fingerprint(mBytes) != stored) fail("checksum mismatch (the file is damaged)");
+    }
 
 private:
     void need(std::size_t n) const {
@@ -95,17 +109,66 @@ void writeCheckpoint(const std::filesystem::path& path, const Checkpoint& c) {
     w.array(s.carried.x);
     w.array(s.carried.y);
     w.array(s.carried.z);
-    writeFileAtomically(path, w.bytes());
+    std::string bytes = w.bytes();
+    const uint64_t checksum = fingerprint(bytes);
+    bytes.append(reinterpret_cast<const char*>(&checksum), sizeof checksum);
+    writeFileAtomically(path, bytes);
 }
 
+namespace {
+
+/// Every field within what a run can produce: a damaged or hand-edited checkpoint is
+/// refused instead of resuming into nonsense or overwriting good frames.
+void validate(const Checkpoint& c, Reader& r) {
+    const SimulationState& s = c.state;
+    const Globules& g = s.globules;
+    if (c.frame < 1) r.fail("frame " + std::to_string(c.frame) + " is not a frame number");
+    if (!std::isfinite(s.time) || s.time < 0) r.fail("time is not a finite number >= 0");
+    if (s.steps < 0) r.fail("negative step count");
+    if (s.nextId < 0 || std::size_t(s.nextId) != g.size()) {
+        r.fail("next id " + std::to_string(s.nextId) + " does not match the " +
+               std::to_string(g.size()) + " globules");
+    }
+    uint64_t emitted = 0;
+    for (std::size_t e : s.emitted) emitted += e;
+    if (emitted != g.size()) r.fail("emitter counts do not add up to the globule count");
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        const float values[] = {g.px[i], g.py[i], g.pz[i], g.vx[i], g.vy[i], g.vz[i]};
+        for (float v : values) {
+            if (!std::isfinite(v)) r.fail("globule " + std::to_string(i) + " is not finite");
+        }
+        if (!(g.radius[i] > 0) || !std::isfinite(g.radius[i]) || !(g.mass[i] > 0) ||
+            !std::isfinite(g.mass[i])) {
+            r.fail("globule " + std::to_string(i) + " has a bad radius or mass");
+        }
+        if (g.id[i] < 0 || g.id[i] >= s.nextId) {
+            r.fail("globule " + std::to_string(i) + " has id " + std::to_string(g.id[i]));
+        }
+    }
+    for (const auto* a : {&s.carried.x, &s.carried.y, &s.carried.z}) {
+        if (!a->empty() && a->size() != g.size()) r.fail("integrator state of the wrong size");
+    }
+}
+
+}  // namespace
+
 Checkpoint readCheckpoint(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw IoError("cannot open checkpoint " + path.string());
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string bytes;
+    try {
+        bytes = readFileBytes(path, kMaxCheckpointBytes);
+    } catch (const std::exception& e) {
+        throw IoError("cannot read checkpoint " + path.string() + ": " + e.what());
+    }
+    if (bytes.compare(0, sizeof kOldMagic, kOldMagic, sizeof kOldMagic) == 0) {
+        throw IoError("checkpoint " + path.string() +
+                      " was written by an older globular (no checksum); run without --resume "
+                      "to start over");
+    }
     Reader r(std::move(bytes), path);
     for (char ch : kMagic) {
         if (r.value<char>() != ch) r.fail("not a globular checkpoint");
     }
+    r.checkAndDropChecksum();
     Checkpoint c;
     c.frame = r.value<int32_t>();
     c.sceneFingerprint = r.value<uint64_t>();
@@ -126,6 +189,7 @@ Checkpoint readCheckpoint(const std::filesystem::path& path) {
         if (a->size() != g.px.size()) r.fail("arrays of different lengths");
     }
     if (g.id.size() != g.px.size() || !r.atEnd()) r.fail("inconsistent sizes");
+    validate(c, r);
     return c;
 }
 

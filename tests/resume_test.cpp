@@ -116,7 +116,7 @@ TEST(Resume, KilledRunResumesBitForBit) {
     EXPECT_EQ(readText(whole / "stats.csv"), readText(killed / "stats.csv"));
     // No temporary left behind under any name.
     for (const auto& entry : fs::recursive_directory_iterator(killed)) {
-        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos)
+        EXPECT_EQ(entry.path().filename().string().find("globular-tmp"), std::string::npos)
             << entry.path();
     }
 }

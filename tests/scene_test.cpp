@@ -175,8 +175,21 @@ TEST(SceneErrors, CustomPresetNeedsCrAndCd) {
 
 TEST(SceneErrors, TooManyStepsPerFrame) {
     EXPECT_EQ(parseError("[simulation]\ndt = 1e-9\n"),
-              "scene.toml:2:6: [simulation] key 'dt': 40000000 steps per frame is more than the "
-              "limit of 1000000");
+              "scene.toml:2:6: [simulation] key 'dt': 4e+07 steps per frame (at fps 25) is "
+              "more than the limit of 1000000");
+    // Derived after the fact: 1e-22 s would overflow an integer count of steps.
+    EXPECT_EQ(parseError("[simulation]\ndt = 1e-22\n"),
+              "scene.toml:2:6: [simulation] key 'dt': 4e+20 steps per frame (at fps 25) is "
+              "more than the limit of 1000000");
+}
+
+TEST(SceneErrors, FrameDurationIsBounded) {
+    EXPECT_EQ(parseError("[simulation]\nfps = 1e-300\n"),
+              "scene.toml:2:7: [simulation] key 'fps': frames of 1e+300 s; a frame must last "
+              "between 1e-06 s and 3600 s");
+    EXPECT_EQ(parseError("[simulation]\nfps = 1e9\n"),
+              "scene.toml:2:7: [simulation] key 'fps': frames of 1e-09 s; a frame must last "
+              "between 1e-06 s and 3600 s");
 }
 
 // --- --set --------------------------------------------------------------------------------
@@ -424,7 +437,9 @@ TEST(SceneResolved, RoundTripIsIdentical) {
     EXPECT_EQ(again.emitters[0].jitter, 0.0);
     EXPECT_EQ(again.emitters[1].rate, 120.0);
     EXPECT_EQ(again.emitters[1].direction, (Vec3{0.3, -1, 0}));
-    EXPECT_EQ(again.emitters[2].file, "cloud.ply");
+    // Relative to the scene file's folder (here the working directory): named absolutely,
+    // so DIR/scene.toml re-runs from any directory.
+    EXPECT_EQ(again.emitters[2].file, (fs::current_path() / "cloud.ply").string());
 }
 
 TEST(SceneResolved, DefaultSceneRoundTrips) {
@@ -509,13 +524,13 @@ TEST(SceneFiles, LoadSceneNamesTheFile) {
     fs::remove_all(dir);
 }
 
-TEST(SceneFiles, MissingFileIsAnIoErrorNamingThePath) {
+TEST(SceneFiles, MissingFileIsBadUsageNamingThePath) {
     NullReporter quiet;
     const fs::path missing = fs::temp_directory_path() / "globular_no_such_scene.toml";
     try {
         loadScene(missing, {}, quiet);
-        ADD_FAILURE() << "expected an IoError";
-    } catch (const IoError& e) {
+        ADD_FAILURE() << "expected a SceneError";
+    } catch (const SceneError& e) {
         EXPECT_TRUE(contains(e.what(), missing.string())) << e.what();
     }
 }

@@ -72,7 +72,7 @@ TEST(SurfaceStage, WritesVdbAndMeshForTheRequestedFramesOnly) {
     }
     // No temporaries left behind.
     for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+        EXPECT_EQ(entry.path().filename().string().find("globular-tmp"), std::string::npos) << entry.path();
     }
 }
 
