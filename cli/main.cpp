@@ -18,6 +18,11 @@ namespace {
 constexpr int kRunFailed = 1;
 constexpr int kBadInput = 2;
 
+/// One line on stderr, whatever bytes a damaged input put into the message.
+void printError(const std::string& message) {
+    std::fprintf(stderr, "error: %s\n", globular::quoteForMessage(message, 4000).c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -76,10 +81,10 @@ int main(int argc, char** argv) {
             globular::runScene(run, reporter);
         }
     } catch (const globular::SceneError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
+        printError(e.what());
         return kBadInput;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
+        printError(e.what());
         return kRunFailed;
     }
     return 0;

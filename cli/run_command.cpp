@@ -100,7 +100,13 @@ void runScene(const RunOptions& options, Reporter& reporter) {
         StageContext simCtx = ctx;
         simCtx.firstFrame = 1;
         reporter.info("sim: " + std::to_string(range.last) + " frames into " + outDir.string());
-        runSimStage(scene.simulationSetup(), simOptions, simCtx);
+        try {
+            runSimStage(scene.simulationSetup(), simOptions, simCtx);
+        } catch (const SceneError& e) {  // an emitter's keys, found when it emits
+            throw SceneError(quoteForMessage(scene.file.empty() ? "<default scene>"
+                                                                : scene.file.string(), 300) +
+                             ": " + e.what());
+        }
     }
     if (wants(options.stages, "surface")) {
         reporter.info("surface: frames " + std::to_string(range.first) + "-" +

@@ -6,12 +6,14 @@
 // to the checksum of the bytes before them, so mutated fields reach the validation.
 //
 // Input: a mode byte, then the file, written to a file under /tmp (one per process,
-// reused) and read back. An IoError is the expected answer to a bad file; anything else
-// (a sanitizer report, another exception, a crash) is a bug. A checkpoint that reads
-// must hold a state a run can produce, as the reader promises: arrays of one length,
-// integrator state empty or of that length, a frame >= 1, time and step count >= 0,
-// finite positions and velocities, positive finite radii and masses, ids 0..n-1 each
-// once with next id n, and emitter counts (each at most n) that add up to n.
+// reused) and read back. The seeds in fuzz/corpus/checkpoint are '1' (names ending
+// .reseal) or '0', then a state.bin written by `globular run` (some damaged by hand). An
+// IoError is the expected answer to a bad file; anything else (a sanitizer report, another
+// exception, a crash) is a bug. A checkpoint that reads must hold a state a run can
+// produce, as the reader promises: arrays of one length, integrator state empty or of that
+// length, a frame >= 1, time and step count >= 0, finite positions and velocities,
+// positive finite radii and masses, ids 0..n-1 each once with next id n, and emitter
+// counts (each at most n) that add up to n.
 
 #include <unistd.h>
 

@@ -11,10 +11,12 @@
 // crash handling there (installChildGuard). To see what a child printed or where it
 // crashed, rerun an input with GLOBULAR_CHILD_STDERR=1.
 //
-// Input: a mode byte (odd: reseal the checksum), then the file. An IoError is the
-// expected answer to a bad file; anything else (a sanitizer report or a crash in this
-// process, another exception) is a bug. A file that reads must give two float grids,
-// "surface" a level set and "density", whose trees can be walked.
+// Input: a mode byte (odd: reseal the checksum), then the file. The seeds in
+// fuzz/corpus/surface_vdb are '1' (names ending .reseal) or '0', then a surface file
+// written by `globular run` (some damaged or cut by hand). An IoError is the expected
+// answer to a bad file; anything else (a sanitizer report or a crash in this process,
+// another exception) is a bug. A file that reads must give two float grids, "surface" a
+// level set and "density", whose trees can be walked.
 
 #include <openvdb/openvdb.h>
 

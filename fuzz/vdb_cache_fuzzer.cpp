@@ -10,10 +10,12 @@
 // kept from triggering libFuzzer's crash handling there (installChildGuard). To see
 // what a child printed or where it crashed, rerun an input with GLOBULAR_CHILD_STDERR=1.
 //
-// Input: a mode byte (odd: reseal the checksum), then the file. An IoError is the
-// expected answer to a bad file; anything else (a sanitizer report or a crash in this
-// process, another exception) is a bug. A cache that reads must give arrays of one
-// length, mass 1 everywhere, globules ordered by id (as the header promises).
+// Input: a mode byte (odd: reseal the checksum), then the file. The seeds in
+// fuzz/corpus/vdb_cache are '1' (names ending .reseal) or '0', then a cache written by
+// `globular run` (some damaged or cut by hand). An IoError is the expected answer to a bad
+// file; anything else (a sanitizer report or a crash in this process, another exception)
+// is a bug. A cache that reads must give arrays of one length, mass 1 everywhere, globules
+// ordered by id (as the header promises).
 
 #include <cstddef>
 #include <cstdint>

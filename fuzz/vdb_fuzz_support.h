@@ -76,8 +76,8 @@ inline void defaultAction(int signal) {
 
 inline void inForkedChild() {
     __sanitizer_set_death_callback(nullptr);
-    for (int signal : {SIGABRT, SIGILL, SIGTRAP, SIGSYS, SIGINT, SIGTERM, SIGXFSZ, SIGUSR1,
-                       SIGUSR2, SIGALRM}) {
+    for (int signal :
+         {SIGABRT, SIGILL, SIGTRAP, SIGSYS, SIGINT, SIGTERM, SIGXFSZ, SIGUSR1, SIGUSR2, SIGALRM}) {
         defaultAction(signal);
     }
     if (!std::getenv("GLOBULAR_CHILD_STDERR")) {

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "atomic_file.h"
 #include "camera.h"
 #include "contact_sheet.h"
 #include "errors.h"
@@ -11,7 +12,9 @@
 #include "globule_cache.h"
 #include "mesh_input.h"
 #include "movie.h"
+#include "render_estimate.h"
 #include "renderer.h"
+#include "surface_estimate.h"
 #include "shaders.h"
 
 namespace globular {
@@ -123,6 +126,12 @@ void writeMovie(const RenderJob& job, const StageContext& ctx) {
 
 void runRenderStage(const RenderJob& job, const StageContext& ctx) {
     validate(job, ctx);
+    if (std::size_t stale = removeStaleTemporaries(ctx.outDir)) {
+        ctx.report().info("render: removed " + std::to_string(stale) +
+                          " temporary files left by an interrupted run");
+    }
+    const uint64_t available = availableMemoryBytes();
+    checkRenderMemory(job.render, 0, available, "the image");
     const long total = ctx.lastFrame - ctx.firstFrame + 1;
     ctx.report().info("render: measuring " + std::to_string(total) + " frame(s) for framing");
     const FrameSetup setup = frameSetup(job, animationExtent(job, ctx));
@@ -133,9 +142,15 @@ void runRenderStage(const RenderJob& job, const StageContext& ctx) {
         Image image;
         if (job.render.mode == "surface") {
             const TriangleMesh mesh = readMesh(job, ctx.outDir, f);
+            checkRenderMemory(job.render,
+                              estimateMeshBytes(mesh.vertexCount(), mesh.triangleCount()),
+                              available, "frame " + std::to_string(f));
             image = renderer.drawMesh(viewOf(mesh), setup);
         } else {
-            image = renderer.drawSpheres(readCache(ctx.outDir, f), setup);
+            const Globules globules = readCache(ctx.outDir, f);
+            checkRenderMemory(job.render, estimateSphereBytes(globules.size()), available,
+                              "frame " + std::to_string(f));
+            image = renderer.drawSpheres(globules, setup);
         }
         writePng(framePngPath(ctx.outDir, f), image);
         ctx.report().progress("render", f - ctx.firstFrame + 1, total);

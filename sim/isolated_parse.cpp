@@ -166,7 +166,8 @@ std::string parseInChild(const fs::path& path, const std::function<std::string()
         throw fail("the file is damaged: its reader failed (exit status " +
                    std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
     }
-    if (received[0] == kFailed) throw fail(received.substr(1));
+    // The message may quote the damaged file's bytes.
+    if (received[0] == kFailed) throw fail(quoteForMessage(received.substr(1), 300));
     if (received[0] != kAnswered) throw fail("the reader process answered nonsense");
     received.erase(0, 1);
     return received;

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "errors.h"
+
 namespace globular {
 
 
@@ -28,7 +30,7 @@ std::vector<std::string_view> splitWords(std::string_view line) {
 
 /// A header line quoted in a message: at most 80 characters.
 std::string quoted(std::string_view line) {
-    return "'" + std::string(line.substr(0, 80)) + (line.size() > 80 ? "...'" : "'");
+    return "'" + quoteForMessage(std::string(line), 80) + "'";
 }
 
 template <typename T>
@@ -155,7 +157,7 @@ double PlyCursor::readAscii() {
     const auto [ptr, ec] = std::from_chars(begin, last, v);
     if (ptr != last || ec != std::errc()) {  // out of range (1e999) is an error too
         throw std::runtime_error("line " + std::to_string(mLine) + ": bad number '" +
-                                 std::string(mData.data() + mPos, last).substr(0, 40) + "'");
+                                 quoteForMessage(std::string(mData.data() + mPos, last), 40) + "'");
     }
     mPos = end;
     return v;
@@ -180,7 +182,7 @@ void PlyCursor::checkFits(const PlyElement& element) const {
     // than it has bytes is not one we wrote or will walk.
     minRow = std::max<std::size_t>(minRow, 1);
     if (element.count > (remaining() + 1) / minRow) {
-        throw std::runtime_error("element '" + element.name.substr(0, 80) + "' declares " +
+        throw std::runtime_error("element '" + quoteForMessage(element.name, 80) + "' declares " +
                                  std::to_string(element.count) + " rows but only " +
                                  std::to_string(remaining()) +
                                  " bytes of data follow (the file is too short or truncated)");

@@ -124,6 +124,31 @@ GlobuleBins::GlobuleBins(const Globules& g, double voxelSize, double influence) 
     mCandidates.erase(std::unique(mCandidates.begin(), mCandidates.end()), mCandidates.end());
 }
 
+GlobuleBins::Footprint GlobuleBins::measure(const Globules& g, double voxelSize,
+                                             double influence) {
+    Footprint f;
+    double maxInfluence = 0;
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        const double r = double(g.radius[i]) * influence / voxelSize;
+        if (!(r > 0) || !std::isfinite(r)) continue;  // left out, or refused when binned
+        // A cell's box spans its globules' spheres plus at most the cell itself: the
+        // sum over globules bounds the sum over cells.
+        const double side = 2.0 * r / kBlockDim + 3.0;
+        f.largestBlocks = std::max(f.largestBlocks, std::pow(2.0 * r / kBlockDim + 1.0, 3));
+        f.listedBlocks += side * side * side;
+        maxInfluence = std::max(maxInfluence, r);
+    }
+    const double reach = std::ceil(maxInfluence / kBlockDim);
+    f.nearOrderSize = std::pow(2.0 * reach + 1.0, 3);
+    return f;
+}
+
+uint64_t GlobuleBins::Footprint::bytes() const {
+    // Candidates in per-thread lists, then merged (2 x 8 bytes), and 16-byte offsets.
+    const double total = 16.0 * listedBlocks + 16.0 * nearOrderSize;
+    return total >= 1.8e19 ? UINT64_MAX : uint64_t(total);
+}
+
 std::pair<uint32_t, uint32_t> GlobuleBins::cellRange(int64_t bx, int64_t by, int64_t bz) const {
     const uint64_t key = pack(bx, by, bz);
     auto it = std::lower_bound(mCellKeys.begin(), mCellKeys.end(), key);

@@ -36,6 +36,17 @@ class GlobuleBins {
     /// @throw ResourceError when a globule lies beyond the voxel coordinate range.
     GlobuleBins(const Globules& globules, double voxelSize, double influence);
 
+    /// What binning @p globules would take, measured in O(n) without allocating, so a
+    /// voxel far smaller than the globules is refused before the bins are built.
+    struct Footprint {
+        double largestBlocks = 0;  ///< blocks of the largest influence sphere's box: a
+                                   ///< lower bound on the field's leaves
+        double listedBlocks = 0;   ///< upper bound on the candidate list before merging
+        double nearOrderSize = 0;  ///< entries of nearOrder()
+        uint64_t bytes() const;    ///< memory the constructor takes at most (saturating)
+    };
+    static Footprint measure(const Globules& globules, double voxelSize, double influence);
+
     /// Keys of the blocks some influence sphere may reach, sorted ascending.
     const std::vector<uint64_t>& candidateBlocks() const { return mCandidates; }
 

@@ -1,5 +1,6 @@
 #include "surface_estimate.h"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -41,16 +42,32 @@ uint64_t readSingleNumber(const std::string& file) {
 
 }  // namespace
 
-SurfaceEstimate estimateSurface(const Globules& globules, const SurfaceSettings& settings) {
+SurfaceEstimate estimateSurface(const Globules& globules, const SurfaceSettings& settings,
+                                uint64_t budget) {
     SurfaceEstimate e;
     e.voxelSize = resolveVoxelSize(settings, globules);
     e.globules = globules.size();
+    constexpr double kVoxelsPerLeaf = GlobuleBins::kBlockDim * GlobuleBins::kBlockDim *
+                                      GlobuleBins::kBlockDim;
+    const auto fieldBytes = [&](double leaves) {
+        return leaves * double(kBytesPerLeaf) * kPeakFactor +
+               double(e.globules) * double(kBytesPerGlobule);
+    };
+    const auto saturate = [](double v) { return v >= 1.8e19 ? UINT64_MAX : uint64_t(v); };
+    const GlobuleBins::Footprint footprint =
+        GlobuleBins::measure(globules, e.voxelSize, settings.influence);
+    const uint64_t binning = footprint.bytes();
+    const uint64_t lowerBound = saturate(fieldBytes(footprint.largestBlocks));
+    if (budget > 0 && std::max(binning, lowerBound) > budget) {
+        e.fieldLeaves = std::size_t(std::min(footprint.largestBlocks, 1.8e19));
+        e.voxels = saturate(footprint.largestBlocks * kVoxelsPerLeaf);
+        e.bytes = std::max(binning, lowerBound);
+        return e;
+    }
     const GlobuleBins bins(globules, e.voxelSize, settings.influence);
     e.fieldLeaves = bins.candidateBlocks().size();
-    e.voxels = uint64_t(e.fieldLeaves) * GlobuleBins::kBlockDim * GlobuleBins::kBlockDim *
-               GlobuleBins::kBlockDim;
-    e.bytes = uint64_t(double(e.fieldLeaves * kBytesPerLeaf) * kPeakFactor) +
-              uint64_t(e.globules) * kBytesPerGlobule;
+    e.voxels = uint64_t(e.fieldLeaves) * uint64_t(kVoxelsPerLeaf);
+    e.bytes = std::max(saturate(fieldBytes(double(e.fieldLeaves))), binning);
     return e;
 }
 

@@ -20,9 +20,15 @@ struct SurfaceEstimate {
 };
 
 /// Bins the globules (GlobuleBins) and counts the leaves their influence spheres reach.
-/// Costs about a tenth of a second per million globules.
+/// Costs about a tenth of a second per million globules. The bins' own memory counts
+/// too: globules of very different radii, or a voxel far smaller than they are, would
+/// take more to bin than to surface.
+/// @param budget bytes available (0 = unknown). When the largest globule alone, or the
+///        binning, would exceed it, returns at once without binning, with bytes above
+///        @p budget and fieldLeaves the lower bound of the largest globule.
 /// @throw as GlobuleBins (non-finite or out-of-range globules).
-SurfaceEstimate estimateSurface(const Globules& globules, const SurfaceSettings& settings);
+SurfaceEstimate estimateSurface(const Globules& globules, const SurfaceSettings& settings,
+                                uint64_t budget = 0);
 
 /// Memory this process may still allocate: MemAvailable of /proc/meminfo, lowered to the
 /// headroom of the cgroup limit when one is set. 0 when neither can be read.

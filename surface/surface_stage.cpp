@@ -9,6 +9,7 @@
 #include <optional>
 #include <sstream>
 
+#include "atomic_file.h"
 #include "errors.h"
 #include "frame_paths.h"
 #include "globule_cache.h"
@@ -50,7 +51,7 @@ SurfaceEstimate checkAllFrames(const SurfaceSettings& settings, const StageConte
     tbb::parallel_for(0, count, [&](int k) {
         const int frame = ctx.firstFrame + k;
         try {
-            estimates[k] = estimateSurface(readCache(ctx.outDir, frame), settings);
+            estimates[k] = estimateSurface(readCache(ctx.outDir, frame), settings, budget);
         } catch (const SimulationError& e) {  // a bad globule: say which cache holds it
             errors[k] = std::make_exception_ptr(
                 SimulationError(cacheVdbPath(ctx.outDir, frame).string() + ": " + e.what()));
@@ -90,6 +91,10 @@ void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx) {
                          std::to_string(ctx.lastFrame) + " is empty or starts before frame 1");
     }
     Reporter& report = ctx.report();
+    if (std::size_t stale = removeStaleTemporaries(ctx.outDir)) {
+        report.info("surface: removed " + std::to_string(stale) +
+                    " temporary files left by an interrupted run");
+    }
     const int total = ctx.lastFrame - ctx.firstFrame + 1;
     const uint64_t budget = settings.memoryLimitGiB > 0
                                 ? uint64_t(settings.memoryLimitGiB * 1024.0 * 1024.0 * 1024.0)
