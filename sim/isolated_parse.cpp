@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
@@ -35,6 +36,7 @@ constexpr bool kAddressSanitizer = false;
 #endif
 
 constexpr char kAnswered = 'O', kFailed = 'E';
+constexpr uint64_t kMinChildMemory = uint64_t(256) << 20;
 
 void writeAll(int fd, const char* data, std::size_t size) {
     while (size > 0) {
@@ -100,12 +102,16 @@ std::string parseInChild(const fs::path& path, const std::function<std::string()
     const auto fail = [&](const std::string& what) {
         return IoError("cannot read " + path.string() + ": " + what);
     };
-    if (limits.seconds <= 0) {
-        std::error_code ec;
-        const auto size = fs::file_size(path, ec);
-        limits.seconds = 60.0 + (ec ? 0.0 : double(size) / 10e6);
+    std::error_code ec;
+    const uint64_t size = fs::file_size(path, ec);
+    if (limits.seconds <= 0) limits.seconds = 60.0 + (ec ? 0.0 : double(size) / 10e6);
+    if (limits.memoryBytes == 0) {
+        // Decompressed data may be far larger than the file, but not beyond reason: a
+        // damaged size field then fails fast instead of touching gigabytes.
+        const uint64_t byFile = std::max<uint64_t>(kMinChildMemory, ec ? 0 : size * 64);
+        const uint64_t half = halfOfPhysicalMemory();
+        limits.memoryBytes = half > 0 ? std::min(byFile, half) : byFile;
     }
-    if (limits.memoryBytes == 0) limits.memoryBytes = halfOfPhysicalMemory();
 
     int fds[2];
     if (::pipe2(fds, O_CLOEXEC) != 0) {

@@ -14,7 +14,8 @@ namespace globular {
 
 struct ChildLimits {
     double seconds = 0;        ///< wall time; 0 = 60 s plus 1 s per 10 MB of the file
-    uint64_t memoryBytes = 0;  ///< address space the child may add; 0 = half of RAM
+    uint64_t memoryBytes = 0;  ///< address space the child may add; 0 = 64 times the
+                               ///< file's size (at least 256 MiB, at most half of RAM)
 };
 
 /// Runs @p parse in a forked child and @return the bytes it returned. The child is a copy

@@ -146,13 +146,17 @@ std::string encodeVdb(const openvdb::GridCPtrVec& grids, const openvdb::MetaMap&
     archive.encode(out, grids, seekable, metadata);
     if (!out) throw std::runtime_error("cannot encode the VDB file in memory");
     std::string bytes = std::move(out).str();
+    sealVdbChecksum(bytes);
+    return bytes;
+}
+
+void sealVdbChecksum(std::string& bytes) {
     const VdbLayout layout = scanVdbLayout(bytes);
     if (layout.checksumOffset == std::string::npos) {
         throw std::runtime_error("VDB checksum placeholder missing");
     }
     const std::string sum = checksumHex(bytes, layout.gridsOffset);
     bytes.replace(layout.checksumOffset, kChecksumDigits, sum);
-    return bytes;
 }
 
 void writeVdbFile(const fs::path& path, const openvdb::GridCPtrVec& grids,

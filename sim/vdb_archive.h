@@ -21,6 +21,11 @@ namespace globular {
 std::string encodeVdb(const openvdb::GridCPtrVec& grids, const openvdb::MetaMap& fileMetadata,
                       bool seekable = true);
 
+/// Writes the checksum of VDB file @p bytes into their "globular_checksum" metadata (what
+/// encodeVdb does last; tests use it to forge damaged files that pass the checksum).
+/// @throw std::runtime_error when the bytes are not a VDB file with that metadata.
+void sealVdbChecksum(std::string& bytes);
+
 /// encodeVdb, then written atomically. @throw IoError naming @p path (disk full, ...).
 void writeVdbFile(const std::filesystem::path& path, const openvdb::GridCPtrVec& grids,
                   const openvdb::MetaMap& fileMetadata = openvdb::MetaMap());

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_runner.h"
 #include "errors.h"
 #include "reporter.h"
 #include "scene.h"
@@ -21,8 +22,6 @@ namespace globular {
 namespace {
 
 namespace fs = std::filesystem;
-
-const char* kBinary = GLOBULAR_EXECUTABLE;  // build/globular (tests/CMakeLists.txt)
 
 // 30 globules in a helix, 5 frames: a run takes a fraction of a second.
 const char* kSmallScene = R"([simulation]
@@ -33,24 +32,6 @@ type = "helix"
 count = 30
 )";
 
-struct RunResult {
-    int status = -1;  ///< exit status; -1 when killed by a signal
-    std::string out, err;
-};
-
-std::string readFile(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
-std::string quote(const std::string& text) {
-    std::string out = "'";
-    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
 std::vector<std::string> lines(const std::string& text) {
     std::vector<std::string> out;
     std::istringstream in(text);
@@ -58,41 +39,7 @@ std::vector<std::string> lines(const std::string& text) {
     return out;
 }
 
-class Cli : public ::testing::Test {
-  protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        mDir = fs::temp_directory_path() /
-               ("globular_cli_test_" + std::string(info->name()) + "_" + std::to_string(getpid()));
-        fs::remove_all(mDir);
-        fs::create_directories(mDir);
-        ASSERT_TRUE(fs::exists(kBinary)) << kBinary << " is not built";
-    }
-    void TearDown() override {
-        if (!HasFailure()) fs::remove_all(mDir);
-    }
-
-    /// Runs `globular ARGS` with stdin from /dev/null, capturing stdout and stderr.
-    RunResult run(const std::string& args) {
-        const fs::path out = mDir / "stdout.txt", err = mDir / "stderr.txt";
-        const std::string command = quote(kBinary) + " " + args + " </dev/null >" +
-                                    quote(out.string()) + " 2>" + quote(err.string());
-        const int raw = std::system(command.c_str());
-        RunResult result;
-        if (raw != -1 && WIFEXITED(raw)) result.status = WEXITSTATUS(raw);
-        result.out = readFile(out);
-        result.err = readFile(err);
-        return result;
-    }
-
-    fs::path writeScene(const std::string& name, const std::string& text) {
-        const fs::path path = mDir / name;
-        std::ofstream(path) << text;
-        return path;
-    }
-
-    fs::path mDir;
-};
+using Cli = CliTest;
 
 TEST_F(Cli, VersionExitsZero) {
     const RunResult r = run("--version");
@@ -215,11 +162,11 @@ TEST_F(Cli, ReversedFrameRangeExitsTwo) {
     EXPECT_FALSE(fs::exists(out / "cache"));
 }
 
-TEST_F(Cli, MissingSceneFileNamesThePath) {
+TEST_F(Cli, MissingSceneFileIsBadUsageNamingThePath) {
     const fs::path missing = mDir / "no_such_scene.toml";
     const RunResult r = run("run " + quote(missing.string()) + " --stages sim --out " +
                             quote((mDir / "out").string()));
-    EXPECT_NE(r.status, 0);
+    EXPECT_EQ(r.status, 2);
     EXPECT_NE(r.err.find("error: "), std::string::npos) << r.err;
     EXPECT_NE(r.err.find(missing.string()), std::string::npos) << r.err;
 }
