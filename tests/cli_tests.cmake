@@ -11,3 +11,7 @@ add_dependencies(resume_test globular)
 globular_test(outcome_metrics_test SOURCES outcome_metrics_test.cpp LIBS globular_cli)
 globular_test(figures_test SOURCES figures_test.cpp LIBS globular_cli)
 add_dependencies(figures_test globular)
+# Issue 11's classes of failure, end to end (reads the stages' files back to check them).
+globular_test(reliability_test SOURCES reliability_test.cpp
+              LIBS globular_surface OpenVDB::openvdb)
+add_dependencies(reliability_test globular)
