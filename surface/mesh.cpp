@@ -25,14 +25,6 @@ static_assert(std::endian::native == std::endian::little,
 
 namespace {
 
-void writeBytes(const fs::path& temporary, const std::string& bytes) {
-    std::ofstream out(temporary, std::ios::binary);
-    if (!out) throw IoError("cannot open " + temporary.string());
-    out.write(bytes.data(), std::streamsize(bytes.size()));
-    out.flush();
-    if (!out) throw IoError("write failed (disk full?)");
-}
-
 void checkMesh(const fs::path& path, const TriangleMesh& mesh) {
     if (mesh.positions.size() % 3 != 0 || mesh.triangles.size() % 3 != 0 ||
         (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size())) {
@@ -108,7 +100,7 @@ void writeMeshPly(const fs::path& path, const TriangleMesh& mesh) {
         append(out, uint8_t(3));
         for (int k = 0; k < 3; ++k) append(out, int32_t(mesh.triangles[3 * t + k]));
     }
-    writeAtomically(path, [&](const fs::path& temporary) { writeBytes(temporary, out); });
+    writeFileAtomically(path, out);
 }
 
 void writeMeshObj(const fs::path& path, const TriangleMesh& mesh) {
@@ -147,7 +139,7 @@ void writeMeshObj(const fs::path& path, const TriangleMesh& mesh) {
         }
         out += '\n';
     }
-    writeAtomically(path, [&](const fs::path& temporary) { writeBytes(temporary, out); });
+    writeFileAtomically(path, out);
 }
 
 // ---------------------------------------------------------------------------------------
