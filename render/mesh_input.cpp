@@ -1,16 +1,21 @@
 #include "mesh_input.h"
 
 #include <charconv>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
 #include "errors.h"
+#include "file_bytes.h"
 
 namespace globular {
 
 namespace fs = std::filesystem;
 
 namespace {
+
+/// Meshes larger than this are refused before they are read.
+constexpr uint64_t kMaxObjBytes = uint64_t(16) << 30;
 
 [[noreturn]] void fail(const fs::path& path, std::size_t line, const std::string& problem) {
     throw IoError(path.string() + ":" + std::to_string(line) + ": " + problem);
@@ -23,11 +28,11 @@ uint32_t cornerIndex(const std::string& token, std::size_t vertexCount, const fs
     const char* end = token.data() + token.size();
     const auto [stop, ec] = std::from_chars(token.data(), end, index);
     if (ec != std::errc() || (stop != end && *stop != '/')) {
-        fail(path, line, "bad face corner '" + token + "'");
+        fail(path, line, "bad face corner '" + quoteForMessage(token, 40) + "'");
     }
     if (index < 0) index += (long long)vertexCount + 1;  // relative to the vertices so far
     if (index < 1 || index > (long long)vertexCount) {
-        fail(path, line, "face index " + token + " is out of range");
+        fail(path, line, "face index " + quoteForMessage(token, 40) + " is out of range");
     }
     return uint32_t(index - 1);
 }
@@ -35,8 +40,13 @@ uint32_t cornerIndex(const std::string& token, std::size_t vertexCount, const fs
 }  // namespace
 
 TriangleMesh readMeshObj(const fs::path& path) {
-    std::ifstream in(path);
-    if (!in) throw IoError("cannot open " + path.string());
+    std::string bytes;
+    try {
+        bytes = readFileBytes(path, kMaxObjBytes);
+    } catch (const std::exception& e) {
+        throw IoError("cannot read mesh " + path.string() + ": " + e.what());
+    }
+    std::istringstream in(std::move(bytes));
     TriangleMesh mesh;
     std::vector<float> normals;
     std::string text;
@@ -49,6 +59,9 @@ TriangleMesh readMeshObj(const fs::path& path) {
         if (kind == "v" || kind == "vn") {
             float xyz[3];
             if (!(line >> xyz[0] >> xyz[1] >> xyz[2])) fail(path, lineNumber, "expected x y z");
+            if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2])) {
+                fail(path, lineNumber, "a coordinate is not finite");
+            }
             auto& target = kind == "v" ? mesh.positions : normals;
             target.insert(target.end(), xyz, xyz + 3);
         } else if (kind == "f") {
