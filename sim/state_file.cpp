@@ -130,8 +130,12 @@ void validate(const Checkpoint& c, Reader& r) {
                std::to_string(g.size()) + " globules");
     }
     uint64_t emitted = 0;
-    for (std::size_t e : s.emitted) emitted += e;
+    for (std::size_t e : s.emitted) {
+        if (e > g.size() - emitted) r.fail("emitter counts add up to more than the globules");
+        emitted += e;
+    }
     if (emitted != g.size()) r.fail("emitter counts do not add up to the globule count");
+    std::vector<bool> seen(g.size(), false);
     for (std::size_t i = 0; i < g.size(); ++i) {
         const float values[] = {g.px[i], g.py[i], g.pz[i], g.vx[i], g.vy[i], g.vz[i]};
         for (float v : values) {
@@ -141,9 +145,11 @@ void validate(const Checkpoint& c, Reader& r) {
             !std::isfinite(g.mass[i])) {
             r.fail("globule " + std::to_string(i) + " has a bad radius or mass");
         }
-        if (g.id[i] < 0 || g.id[i] >= s.nextId) {
-            r.fail("globule " + std::to_string(i) + " has id " + std::to_string(g.id[i]));
+        if (g.id[i] < 0 || g.id[i] >= s.nextId || seen[std::size_t(g.id[i])]) {
+            r.fail("globule " + std::to_string(i) + " has id " + std::to_string(g.id[i]) +
+                   " (ids are 0 to " + std::to_string(s.nextId - 1) + ", each once)");
         }
+        seen[std::size_t(g.id[i])] = true;
     }
     for (const auto* a : {&s.carried.x, &s.carried.y, &s.carried.z}) {
         if (!a->empty() && a->size() != g.size()) r.fail("integrator state of the wrong size");

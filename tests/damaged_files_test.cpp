@@ -279,6 +279,12 @@ TEST_F(DamagedFiles, CheckpointFieldsAreValidatedBehindAGoodChecksum) {
     c = smallCheckpoint();
     c.state.emitted = {3};
     refused(c, "emitter counts that do not add up");
+    c = smallCheckpoint();
+    c.state.emitted = {std::size_t(-1), 121};  // wraps around to 120
+    refused(c, "emitter counts that wrap around");
+    c = smallCheckpoint();
+    c.state.globules.id[9] = c.state.globules.id[8];
+    refused(c, "a duplicate id");
 }
 
 TEST(ParseInChild, ACrashIsAnErrorNamingTheFile) {
