@@ -14,8 +14,6 @@
 #include <string>
 
 #include "errors.h"
-#include "file_bytes.h"
-#include "isolated_parse.h"
 #include "vdb_archive.h"
 
 namespace globular {
@@ -308,22 +306,15 @@ void writeGlobuleVdb(const fs::path& path, const Globules& globules, const Cache
 
 Globules readGlobuleVdb(const fs::path& path, CacheInfo* info) {
     initializeVdb();
-    const auto fail = [&](const std::string& what) {
-        return IoError("cannot read " + path.string() + ": " + what);
-    };
-    try {
-        checkVdbBytes(readFileBytes(path, kMaxCacheBytes));
-    } catch (const std::exception& e) {
-        throw fail(e.what());
-    }
-    const std::string answer = parseInChild(path, [&] { return parseCache(path); });
+    const std::string answer =
+        parseVdbInChild(path, kMaxCacheBytes, [&] { return parseCache(path); });
     try {
         CacheInfo read;
         Globules globules = unpackGlobules(answer, read);
         if (info) *info = read;
         return globules;
     } catch (const std::exception& e) {
-        throw fail(e.what());
+        throw IoError("cannot read " + path.string() + ": " + e.what());
     }
 }
 

@@ -9,6 +9,8 @@
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "file_bytes.h"
+#include "isolated_parse.h"
 
 namespace globular {
 
@@ -177,6 +179,16 @@ void checkVdbBytes(const std::string& bytes) {
                       checksumHex(bytes, layout.gridsOffset)) != 0) {
         throw std::runtime_error("file is corrupt (checksum mismatch)");
     }
+}
+
+std::string parseVdbInChild(const fs::path& path, uint64_t maxBytes,
+                            const std::function<std::string()>& parse) {
+    try {
+        checkVdbBytes(readFileBytes(path, maxBytes));
+    } catch (const std::exception& e) {
+        throw IoError("cannot read " + path.string() + ": " + e.what());
+    }
+    return parseInChild(path, parse);
 }
 
 openvdb::GridPtrVecPtr decodeStreamedVdb(const std::string& bytes) {

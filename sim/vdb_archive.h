@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 namespace globular {
@@ -34,6 +35,13 @@ void writeVdbFile(const std::filesystem::path& path, const openvdb::GridCPtrVec&
 /// and, when the file carries one, the checksum. @throw std::runtime_error saying what
 /// is wrong.
 void checkVdbBytes(const std::string& bytes);
+
+/// The first half of reading a VDB file that may be damaged: its bytes are read (at most
+/// @p maxBytes) and checked (checkVdbBytes), then @p parse runs in a child process
+/// (isolated_parse.h) and its answer is returned, for the caller to decode and check.
+/// @throw IoError "cannot read PATH: ..." for every failure on the way.
+std::string parseVdbInChild(const std::filesystem::path& path, uint64_t maxBytes,
+                            const std::function<std::string()>& parse);
 
 /// Grids read back from bytes encoded with seekable = false (what a reader process sends
 /// back to its parent; the bytes come from OpenVDB's own writer).

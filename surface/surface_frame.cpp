@@ -4,8 +4,6 @@
 #include <tbb/parallel_invoke.h>
 
 #include "errors.h"
-#include "file_bytes.h"
-#include "isolated_parse.h"
 #include "surface_grids.h"
 #include "vdb_archive.h"
 
@@ -94,20 +92,13 @@ std::string parseSurfaceFile(const std::filesystem::path& path) {
 
 SurfaceGrids readSurfaceVdb(const std::filesystem::path& path) {
     openvdb::initialize();
-    const auto fail = [&](const std::string& what) {
-        return IoError("cannot read " + path.string() + ": " + what);
-    };
-    try {
-        checkVdbBytes(readFileBytes(path, kMaxSurfaceFileBytes));
-    } catch (const std::exception& e) {
-        throw fail(e.what());
-    }
-    const std::string answer = parseInChild(path, [&] { return parseSurfaceFile(path); });
+    const std::string answer =
+        parseVdbInChild(path, kMaxSurfaceFileBytes, [&] { return parseSurfaceFile(path); });
     try {
         const auto grids = decodeStreamedVdb(answer);
         return SurfaceGrids{floatGridNamed(*grids, "surface"), floatGridNamed(*grids, "density")};
     } catch (const std::exception& e) {
-        throw fail(e.what());
+        throw IoError("cannot read " + path.string() + ": " + e.what());
     }
 }
 
