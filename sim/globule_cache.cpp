@@ -214,6 +214,7 @@ struct Packet {
     }
     template <typename T>
     void array(const std::vector<T>& v) {
+        if (v.empty()) return;  // data() may be null
         bytes.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
     }
 };
@@ -235,7 +236,7 @@ Globules unpackGlobules(const std::string& bytes, CacheInfo& info) {
     std::size_t pos = 0;
     const auto take = [&](void* to, std::size_t size) {
         if (size > bytes.size() - pos) throw std::runtime_error("short answer from the reader");
-        std::memcpy(to, bytes.data() + pos, size);
+        if (size > 0) std::memcpy(to, bytes.data() + pos, size);  // data() of {} may be null
         pos += size;
     };
     uint64_t n = 0;
