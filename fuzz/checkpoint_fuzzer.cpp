@@ -29,27 +29,17 @@
 #include <vector>
 
 #include "errors.h"
+#include "fuzz_input.h"
 #include "state_file.h"
 
 namespace {
 
-const std::filesystem::path& inputPath() {
-    static const std::filesystem::path path =
-        std::filesystem::temp_directory_path() /
-        ("globular_checkpoint_fuzz." + std::to_string(getpid()) + ".bin");
-    return path;
-}
+const globular_fuzz::InputFile gInput("globular_checkpoint_fuzz", ".bin");
 
-struct RemoveAtExit {
-    ~RemoveAtExit() {
-        std::error_code ignored;
-        std::filesystem::remove(inputPath(), ignored);
-    }
-} gRemoveAtExit;
+using globular_fuzz::verbose;
 
 [[noreturn]] void inconsistent(const char* what) {
-    std::fprintf(stderr, "checkpoint_fuzzer: readCheckpoint returned %s\n", what);
-    std::abort();
+    globular_fuzz::inconsistent("checkpoint_fuzzer", what);
 }
 
 void check(const globular::Checkpoint& c) {
@@ -90,26 +80,23 @@ void check(const globular::Checkpoint& c) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
-    std::string bytes;
-    if (size > 0) {
-        bytes.assign(reinterpret_cast<const char*>(data) + 1, size - 1);
-        if ((data[0] & 1) != 0 && bytes.size() >= sizeof(uint64_t)) {
-            const std::size_t payload = bytes.size() - sizeof(uint64_t);
-            const uint64_t sum = globular::fingerprint(bytes.substr(0, payload));
-            std::memcpy(bytes.data() + payload, &sum, sizeof sum);
-        }
+    globular_fuzz::ModedInput input = globular_fuzz::splitMode(data, size);
+    std::string& bytes = input.file;
+    if (input.forgeChecksum && bytes.size() >= sizeof(uint64_t)) {
+        const std::size_t payload = bytes.size() - sizeof(uint64_t);
+        const uint64_t sum = globular::fingerprint(bytes.substr(0, payload));
+        std::memcpy(bytes.data() + payload, &sum, sizeof sum);
     }
-    {
-        std::ofstream out(inputPath(), std::ios::binary | std::ios::trunc);
-        out.write(bytes.data(), std::streamsize(bytes.size()));
-        if (!out) {
-            std::perror("checkpoint_fuzzer: cannot write the input file");
-            std::abort();
-        }
-    }
+    gInput.write(bytes);
     try {
-        check(globular::readCheckpoint(inputPath()));
-    } catch (const globular::Error&) {
+        const globular::Checkpoint c = globular::readCheckpoint(gInput.path());
+        check(c);
+        if (verbose()) {
+            std::fprintf(stderr, "checkpoint_fuzzer: frame %d, %zu globules\n", c.frame,
+                         c.state.globules.size());
+        }
+    } catch (const globular::Error& e) {
+        if (verbose()) std::fprintf(stderr, "%s\n", e.what());
     }
     return 0;
 }

@@ -7,53 +7,31 @@
 // reads must be whole: positions in threes, a normal per vertex (read or computed),
 // triangles in threes and every triangle index naming a vertex.
 
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <string>
 
 #include "errors.h"
+#include "fuzz_input.h"
 #include "mesh.h"
 
 namespace {
 
-const std::filesystem::path& inputPath() {
-    static const std::filesystem::path path =
-        std::filesystem::temp_directory_path() /
-        ("globular_mesh_fuzz." + std::to_string(getpid()) + ".ply");
-    return path;
-}
+const globular_fuzz::InputFile gInput("globular_mesh_fuzz", ".ply");
 
-struct RemoveAtExit {
-    ~RemoveAtExit() {
-        std::error_code ignored;
-        std::filesystem::remove(inputPath(), ignored);
-    }
-} gRemoveAtExit;
+using globular_fuzz::verbose;
 
 [[noreturn]] void inconsistent(const char* what) {
-    std::fprintf(stderr, "mesh_fuzzer: readMeshPly returned %s\n", what);
-    std::abort();
+    globular_fuzz::inconsistent("mesh_fuzzer", what);
 }
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
-    {
-        std::ofstream out(inputPath(), std::ios::binary | std::ios::trunc);
-        out.write(reinterpret_cast<const char*>(data), std::streamsize(size));
-        if (!out) {
-            std::perror("mesh_fuzzer: cannot write the input file");
-            std::abort();
-        }
-    }
+    gInput.write(globular_fuzz::bytesOf(data, size));
     try {
-        const globular::TriangleMesh mesh = globular::readMeshPly(inputPath());
+        const globular::TriangleMesh mesh = globular::readMeshPly(gInput.path());
         if (mesh.positions.size() % 3 != 0) inconsistent("positions not in threes");
         if (mesh.normals.size() != mesh.positions.size()) {
             inconsistent("normals and positions of different lengths");
@@ -63,7 +41,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
         for (uint32_t v : mesh.triangles) {
             if (v >= vertices) inconsistent("a triangle index out of range");
         }
-    } catch (const globular::Error&) {
+        if (verbose()) {
+            std::fprintf(stderr, "mesh_fuzzer: %zu vertices, %zu triangles\n", vertices,
+                         mesh.triangleCount());
+        }
+    } catch (const globular::Error& e) {
+        if (verbose()) std::fprintf(stderr, "%s\n", e.what());
     }
     return 0;
 }

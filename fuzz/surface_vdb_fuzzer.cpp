@@ -31,11 +31,12 @@
 
 namespace {
 
-const globular_fuzz::InputFile gInput("globular_surface_vdb_fuzz");
+const globular_fuzz::InputFile gInput("globular_surface_vdb_fuzz", ".vdb");
+
+using globular_fuzz::verbose;
 
 [[noreturn]] void inconsistent(const char* what) {
-    std::fprintf(stderr, "surface_vdb_fuzzer: readSurfaceVdb returned %s\n", what);
-    std::abort();
+    globular_fuzz::inconsistent("surface_vdb_fuzzer", what);
 }
 
 /// Walks every active value and every leaf of @p grid in this process, under ASan.
@@ -56,7 +57,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
-    gInput.write(data, size);
+    gInput.write(globular_fuzz::vdbFile(data, size));
     try {
         const globular::SurfaceGrids grids = globular::readSurfaceVdb(gInput.path());
         if (!grids.surface || !grids.density) inconsistent("a null grid");
@@ -67,7 +68,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
         }
         walk(*grids.surface);
         walk(*grids.density);
-    } catch (const globular::Error&) {
+        if (verbose()) {
+            std::fprintf(stderr, "surface_vdb_fuzzer: %llu + %llu active voxels\n",
+                         static_cast<unsigned long long>(grids.surface->activeVoxelCount()),
+                         static_cast<unsigned long long>(grids.density->activeVoxelCount()));
+        }
+    } catch (const globular::Error& e) {
+        if (verbose()) std::fprintf(stderr, "%s\n", e.what());
     }
     return 0;
 }

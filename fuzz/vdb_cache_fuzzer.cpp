@@ -28,11 +28,12 @@
 
 namespace {
 
-const globular_fuzz::InputFile gInput("globular_vdb_cache_fuzz");
+const globular_fuzz::InputFile gInput("globular_vdb_cache_fuzz", ".vdb");
+
+using globular_fuzz::verbose;
 
 [[noreturn]] void inconsistent(const char* what) {
-    std::fprintf(stderr, "vdb_cache_fuzzer: readGlobuleVdb returned %s\n", what);
-    std::abort();
+    globular_fuzz::inconsistent("vdb_cache_fuzzer", what);
 }
 
 }  // namespace
@@ -43,7 +44,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
-    gInput.write(data, size);
+    gInput.write(globular_fuzz::vdbFile(data, size));
     try {
         globular::CacheInfo info;
         const globular::Globules g = globular::readGlobuleVdb(gInput.path(), &info);
@@ -56,7 +57,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
             if (g.mass[i] != 1.0f) inconsistent("a mass other than 1");
             if (i > 0 && g.id[i - 1] > g.id[i]) inconsistent("globules not ordered by id");
         }
-    } catch (const globular::Error&) {
+        if (verbose()) {
+            std::fprintf(stderr, "vdb_cache_fuzzer: %zu globules, frame %d\n", n, info.frame);
+        }
+    } catch (const globular::Error& e) {
+        if (verbose()) std::fprintf(stderr, "%s\n", e.what());
     }
     return 0;
 }

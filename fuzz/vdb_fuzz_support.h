@@ -2,10 +2,10 @@
 // What the two VDB fuzz targets (vdb_cache_fuzzer, surface_vdb_fuzzer) share.
 //
 // Input format: one mode byte, then the file. An even mode byte writes the file as it is;
-// an odd one first reseals the globular checksum (the file-level string metadata
-// "globular_checksum", sim/vdb_archive.h) over the mutated bytes, so a mutation of one
-// of our own files gets past checkVdbBytes and reaches OpenVDB in the reader's child
-// process instead of ending at "checksum mismatch".
+// an odd one first reseals the globular checksum (sealVdbChecksum, sim/vdb_archive.h)
+// over the mutated bytes, so a mutation of one of our own files gets past checkVdbBytes
+// and reaches OpenVDB in the reader's child process instead of ending at "checksum
+// mismatch".
 //
 // The readers parse with OpenVDB in a forked child (sim/isolated_parse.h). The child is
 // a copy of this process, libFuzzer and the sanitizers included: left alone, a crash
@@ -40,9 +40,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <string>
+
+#include "fuzz_input.h"
+#include "vdb_archive.h"
 
 namespace globular_fuzz {
 
@@ -97,109 +98,17 @@ inline void installChildGuard() {
     }
 }
 
-// ---------------------------------------------------------------------------------------
-// The checksum, as sim/vdb_archive.cpp computes it (scanVdbLayout, checksumHex; that file
-// keeps them private, so they are copied here).
-
-constexpr const char* kChecksumKey = "globular_checksum";
-constexpr std::size_t kChecksumDigits = 16;
-
-/// Where the checksum's hex digits are and where the checksummed bytes begin (the grid
-/// count after the file-level metadata); false when the header or the metadata are cut
-/// short or there is no checksum entry (then there is nothing to reseal).
-inline bool findChecksum(const std::string& bytes, std::size_t& checksumOffset,
-                         std::size_t& gridsOffset) {
-    std::size_t pos = 0;
-    const auto need = [&](uint64_t n) { return n <= bytes.size() - pos; };
-    const auto readU32 = [&](uint32_t& v) {
-        if (!need(4)) return false;
-        std::memcpy(&v, bytes.data() + pos, 4);
-        pos += 4;
-        return true;
-    };
-    // magic (8), file version (4), library version (8), has grid offsets (1), UUID (36)
-    if (!need(8 + 4 + 8 + 1 + 36)) return false;
-    pos += 8 + 4 + 8 + 1 + 36;
-    uint32_t count = 0;
-    if (!readU32(count) || int32_t(count) < 0) return false;
-    checksumOffset = std::string::npos;
-    for (uint32_t m = 0; m < count; ++m) {
-        uint32_t nameSize = 0, typeSize = 0, valueSize = 0;
-        if (!readU32(nameSize) || !need(nameSize)) return false;
-        const std::string name = bytes.substr(pos, nameSize);
-        pos += nameSize;
-        if (!readU32(typeSize) || !need(typeSize)) return false;
-        const std::string type = bytes.substr(pos, typeSize);
-        pos += typeSize;
-        if (!readU32(valueSize) || !need(valueSize)) return false;
-        if (name == kChecksumKey && type == "string" && valueSize == kChecksumDigits) {
-            checksumOffset = pos;  // the last such entry counts, as in scanVdbLayout
-        }
-        pos += valueSize;
-    }
-    gridsOffset = pos;
-    return checksumOffset != std::string::npos;
-}
-
-/// 64-bit FNV-1a over 8-byte little-endian words, then the tail bytes, as 16 hex digits.
-inline std::string checksumHex(const std::string& bytes, std::size_t begin) {
-    uint64_t h = 0xcbf29ce484222325ull;
-    constexpr uint64_t kPrime = 0x100000001b3ull;
-    std::size_t i = begin;
-    for (; i + 8 <= bytes.size(); i += 8) {
-        uint64_t w;
-        std::memcpy(&w, bytes.data() + i, 8);
-        h = (h ^ w) * kPrime;
-    }
-    for (; i < bytes.size(); ++i) h = (h ^ uint8_t(bytes[i])) * kPrime;
-    std::string hex(kChecksumDigits, '0');
-    for (std::size_t d = 0; d < kChecksumDigits; ++d, h >>= 4) {
-        hex[kChecksumDigits - 1 - d] = "0123456789abcdef"[h & 15];
-    }
-    return hex;
-}
-
-/// Rewrites the checksum of @p bytes to match them (nothing when there is none).
-inline void resealChecksum(std::string& bytes) {
-    std::size_t checksumOffset = 0, gridsOffset = 0;
-    if (findChecksum(bytes, checksumOffset, gridsOffset)) {
-        bytes.replace(checksumOffset, kChecksumDigits, checksumHex(bytes, gridsOffset));
-    }
-}
-
-// ---------------------------------------------------------------------------------------
-
-/// The reader takes a path: one file per process under /tmp, reused, removed at exit.
-class InputFile {
-public:
-    explicit InputFile(const char* stem)
-        : mPath(std::filesystem::temp_directory_path() /
-                (std::string(stem) + "." + std::to_string(::getpid()) + ".vdb")) {}
-    ~InputFile() {
-        std::error_code ignored;
-        std::filesystem::remove(mPath, ignored);
-    }
-    const std::filesystem::path& path() const { return mPath; }
-
-    /// Writes the file of a fuzz input (mode byte, then the bytes; see above).
-    void write(const uint8_t* data, std::size_t size) const {
-        std::string bytes;
-        bool reseal = false;
-        if (size > 0) {
-            reseal = (data[0] & 1) != 0;
-            bytes.assign(reinterpret_cast<const char*>(data) + 1, size - 1);
-        }
-        if (reseal) resealChecksum(bytes);
-        std::ofstream out(mPath, std::ios::binary | std::ios::trunc);
-        out.write(bytes.data(), std::streamsize(bytes.size()));
-        if (!out) {
-            std::perror("vdb fuzzer: cannot write the input file");
-            std::abort();
+/// The file of a VDB target's input (fuzz_input.h), its checksum forged when the mode
+/// byte says so (nothing to forge when the layout is too broken to find it).
+inline std::string vdbFile(const uint8_t* data, std::size_t size) {
+    ModedInput input = splitMode(data, size);
+    if (input.forgeChecksum) {
+        try {
+            globular::sealVdbChecksum(input.file);
+        } catch (const std::exception&) {
         }
     }
-
-private:
-    std::filesystem::path mPath;
-};
+    return input.file;
+}
 
 }  // namespace globular_fuzz

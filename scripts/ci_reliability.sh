@@ -90,8 +90,9 @@ fuzz_run() {
         return 1
     fi
     if [[ -n "$artifacts" ]]; then
-        echo "ci_reliability: ${name}_fuzzer exited 0 but wrote artifacts (from a child" \
-            "process?):" $artifacts "; log in $fuzz_build/$name.log" >&2
+        echo "ci_reliability: ${name}_fuzzer exited 0 but wrote artifacts (from a reader's" \
+            "child process?); log in $fuzz_build/$name.log:" >&2
+        printf '  %s\n' $artifacts >&2
         return 1
     fi
 }
