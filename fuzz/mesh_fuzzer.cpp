@@ -1,5 +1,5 @@
 // libFuzzer target for the PLY mesh reader (readMeshPly, surface/mesh.h; the PLY reader
-// underneath is sim/ply_reader.h).
+// underneath is core/ply_reader.h).
 //
 // The reader takes a path, so each input is written to a file under /tmp (one per
 // process, reused) and read back. An IoError is the expected answer to a bad file;

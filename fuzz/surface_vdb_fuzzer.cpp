@@ -1,7 +1,7 @@
 // libFuzzer target for the surface VDB reader (readSurfaceVdb, surface/surface_grids.h).
 //
 // COVERAGE: the reader checks the file's bytes (layout, checksum) in this process, then
-// parses it with OpenVDB in a forked child (sim/isolated_parse.h), which sends the grids
+// parses it with OpenVDB in a forked child (core/isolated_parse.h), which sends the grids
 // back in OpenVDB's streamed encoding. libFuzzer sees no coverage from the child, so it
 // cannot steer mutations through OpenVDB's parser; what it covers and steers is this
 // process's side: the byte checks, the decoding of the child's answer, and the handling

@@ -1,7 +1,7 @@
 // libFuzzer target for the VDB globule cache reader (readGlobuleVdb, sim/globule_cache.h).
 //
 // COVERAGE: the reader checks the file's bytes (layout, checksum) in this process, then
-// parses it with OpenVDB in a forked child (sim/isolated_parse.h). libFuzzer sees no
+// parses it with OpenVDB in a forked child (core/isolated_parse.h). libFuzzer sees no
 // coverage from the child, so it cannot steer mutations through OpenVDB's parser; what
 // it covers and steers is this process's side: the byte checks, the decoding of the
 // child's answer, and the handling of a child that crashed, failed or timed out. The

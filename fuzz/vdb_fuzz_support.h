@@ -2,12 +2,12 @@
 // What the two VDB fuzz targets (vdb_cache_fuzzer, surface_vdb_fuzzer) share.
 //
 // Input format: one mode byte, then the file. An even mode byte writes the file as it is;
-// an odd one first reseals the globular checksum (sealVdbChecksum, sim/vdb_archive.h)
+// an odd one first reseals the globular checksum (sealVdbChecksum, core/vdb_archive.h)
 // over the mutated bytes, so a mutation of one of our own files gets past checkVdbBytes
 // and reaches OpenVDB in the reader's child process instead of ending at "checksum
 // mismatch".
 //
-// The readers parse with OpenVDB in a forked child (sim/isolated_parse.h). The child is
+// The readers parse with OpenVDB in a forked child (core/isolated_parse.h). The child is
 // a copy of this process, libFuzzer and the sanitizers included: left alone, a crash
 // there (expected: OpenVDB trusts its input) would run libFuzzer's deadly-signal and
 // death callbacks in the child, which write crash-*/oom-*/timeout-* artifacts of the

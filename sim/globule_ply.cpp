@@ -20,6 +20,7 @@
 #include "globule_cache.h"
 #include "file_bytes.h"
 #include "ply_reader.h"
+#include "ply_writer.h"
 
 namespace globular {
 
@@ -120,13 +121,12 @@ Globules readVertices(const PlyElement& e, PlyCursor& in, float defaultRadius, b
 void writeGlobulePly(const fs::path& path, const Globules& globules) {
     checkArraySizes(path, globules);
     const Globules& g = globules;
-    const std::string header =
-        "ply\nformat binary_little_endian 1.0\ncomment globular globule cache\n"
-        "element vertex " +
-        std::to_string(g.size()) +
-        "\nproperty float x\nproperty float y\nproperty float z\n"
-        "property float vx\nproperty float vy\nproperty float vz\n"
-        "property float radius\nproperty int id\nend_header\n";
+    PlyElement vertex{"vertex", g.size(), {}};
+    for (const char* name : {"x", "y", "z", "vx", "vy", "vz", "radius"}) {
+        vertex.properties.push_back({name, PlyType::Float32});
+    }
+    vertex.properties.push_back({"id", PlyType::Int32});
+    const std::string header = plyHeader("globular globule cache", {vertex});
     constexpr std::size_t kRowSize = 7 * sizeof(float) + sizeof(int32_t);
     constexpr std::size_t kChunk = 1 << 14;  // rows per write
     writeAtomically(path, [&](const fs::path& temporary) {

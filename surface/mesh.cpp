@@ -14,6 +14,7 @@
 #include "atomic_file.h"
 #include "file_bytes.h"
 #include "ply_reader.h"
+#include "ply_writer.h"
 #include "errors.h"
 
 namespace globular {
@@ -85,12 +86,13 @@ void computeAreaWeightedNormals(TriangleMesh& mesh) {
 void writeMeshPly(const fs::path& path, const TriangleMesh& mesh) {
     checkMesh(path, mesh);
     const bool hasNormals = !mesh.normals.empty();
-    std::string out = "ply\nformat binary_little_endian 1.0\ncomment globular surface\n";
-    out += "element vertex " + std::to_string(mesh.vertexCount()) + "\n";
-    out += "property float x\nproperty float y\nproperty float z\n";
-    if (hasNormals) out += "property float nx\nproperty float ny\nproperty float nz\n";
-    out += "element face " + std::to_string(mesh.triangleCount()) + "\n";
-    out += "property list uchar int vertex_indices\nend_header\n";
+    PlyElement vertex{"vertex", mesh.vertexCount(), {}};
+    for (const char* name : {"x", "y", "z", "nx", "ny", "nz"}) {
+        if (hasNormals || name[0] != 'n') vertex.properties.push_back({name, PlyType::Float32});
+    }
+    const PlyElement face{"face", mesh.triangleCount(),
+                          {{"vertex_indices", PlyType::Int32, PlyType::UInt8}}};
+    std::string out = plyHeader("globular surface", {vertex, face});
     out.reserve(out.size() + mesh.vertexCount() * 24 + mesh.triangleCount() * 13);
     for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
         out.append(reinterpret_cast<const char*>(&mesh.positions[3 * v]), 12);

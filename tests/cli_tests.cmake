@@ -1,5 +1,4 @@
-# Tests of globular_cli.
-globular_test(settings_schema_test SOURCES settings_schema_test.cpp LIBS globular_sim)
+# Tests of globular_cli: the scene reader and the command, end to end.
 globular_test(scene_test SOURCES scene_test.cpp LIBS globular_cli)
 # End-to-end: runs the built executable, so it must be built first.
 globular_test(cli_test SOURCES cli_test.cpp LIBS globular_cli)
@@ -7,10 +6,6 @@ add_dependencies(cli_test globular)
 target_compile_definitions(cli_test PRIVATE GLOBULAR_TEST_VERSION="${PROJECT_VERSION}")
 globular_test(resume_test SOURCES resume_test.cpp LIBS globular_sim)
 add_dependencies(resume_test globular)
-# `globular figures`: the table metrics and verdict rules, and a reduced-size run.
-globular_test(outcome_metrics_test SOURCES outcome_metrics_test.cpp LIBS globular_cli)
-globular_test(figures_test SOURCES figures_test.cpp LIBS globular_cli)
-add_dependencies(figures_test globular)
 # Issue 11's classes of failure, end to end (reads the stages' files back to check them).
 globular_test(reliability_test SOURCES reliability_test.cpp
               LIBS globular_surface OpenVDB::openvdb)

@@ -18,6 +18,21 @@ PlyType plyTypeNamed(std::string_view name) {
     return PlyType::None;
 }
 
+std::string_view plyTypeName(PlyType type) {
+    switch (type) {
+        case PlyType::Int8: return "char";
+        case PlyType::UInt8: return "uchar";
+        case PlyType::Int16: return "short";
+        case PlyType::UInt16: return "ushort";
+        case PlyType::Int32: return "int";
+        case PlyType::UInt32: return "uint";
+        case PlyType::Float32: return "float";
+        case PlyType::Float64: return "double";
+        case PlyType::None: break;
+    }
+    return "";
+}
+
 std::size_t plyTypeSize(PlyType type) {
     switch (type) {
         case PlyType::Int8:

@@ -235,7 +235,7 @@ std::string reproductionMarkdown(const ReportContext& ctx, const std::vector<Run
        << kTableFrames
        << " frames at 25 fps (10 s: the 400-globule column needs about 5 s to land, so the end "
           "state is a settled pile, not the pour). Metrics come from the run's `stats.csv` "
-          "(`cli/outcome_metrics.h`):\n\n"
+          "(`paper/outcome_metrics.h`):\n\n"
           "- **spread**: final horizontal spread, the RMS x-z distance of the globules from "
           "their centroid (world units; radius 1). *Spill* is spread.\n"
           "- **pour spread**: the smallest horizontal spread over the run. The helix column "

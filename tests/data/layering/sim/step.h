@@ -1,0 +1,3 @@
+#pragma once
+// A simulation header.
+#include "clock.h"
