@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "atomic_file.h"
+#include "errors.h"
 #include "material.h"
 #include "pair_force.h"
 
@@ -121,7 +122,9 @@ Fig2Output writeFig2(const fs::path& dir, const Fig2Settings& settings, int widt
        << "} else {\n"
        << "  set terminal png size " << widthPx << "," << heightPx << "\n"
        << "}\n"
-       << "set output 'fig2_force.png'\n"
+       << "# globular names a temporary output (-e \"output='...'\") and renames it into place.\n"
+       << "if (!exists('output')) output = 'fig2_force.png'\n"
+       << "set output output\n"
        << "set datafile separator ','\n"
        << "set key top right\n"
        << "set grid\n"
@@ -146,10 +149,15 @@ Fig2Output writeFig2(const fs::path& dir, const Fig2Settings& settings, int widt
         out.message = "gnuplot is not installed: wrote the CSV and the script, skipped the PNG";
         return out;
     }
-    const std::string command =
-        "cd " + shellQuote(dir.string()) + " && gnuplot fig2_force.gp >/dev/null 2>gnuplot.log";
-    const int status = std::system(command.c_str());
-    if (status != 0 || !fs::exists(png)) {
+    // Through the atomic path, like every other file: gnuplot writes a temporary.
+    try {
+        writeAtomically(png, [&](const fs::path& temporary) {
+            const std::string command = "cd " + shellQuote(dir.string()) + " && gnuplot -e " +
+                                        shellQuote("output='" + temporary.filename().string() + "'") +
+                                        " fig2_force.gp >/dev/null 2>gnuplot.log";
+            if (std::system(command.c_str()) != 0) throw IoError("gnuplot failed");
+        });
+    } catch (const IoError&) {
         out.message = "gnuplot failed (see " + (dir / "gnuplot.log").string() +
                       "): wrote the CSV and the script, skipped the PNG";
         return out;
