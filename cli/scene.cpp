@@ -81,7 +81,7 @@ std::filesystem::path Scene::directory() const {
 }
 
 SimulationSetup Scene::simulationSetup() const {
-    return SimulationSetup{simulation, material, ground, emitters, directory()};
+    return SimulationSetup{simulation, material, ground, emitters, directory(), colliders};
 }
 
 const SettingsSection* SceneSections::single(const std::string& name) const {
@@ -118,6 +118,7 @@ SceneSections bindSections(Scene& scene,
     // An absent array keeps what the scene has: one default element when it has none.
     scene.emitters.resize(sizeOr(arraySizes, "emitter", std::max<std::size_t>(1, scene.emitters.size())));
     scene.lights.resize(sizeOr(arraySizes, "light", std::max<std::size_t>(1, scene.lights.size())));
+    scene.colliders.resize(sizeOr(arraySizes, "collider", scene.colliders.size()));
     SceneSections sections;
     sections.singles.push_back(describeSection("simulation", scene.simulation));
     sections.singles.push_back(describeSection("material", scene.material));
@@ -128,6 +129,7 @@ SceneSections bindSections(Scene& scene,
     sections.singles.push_back(describeSection("camera", scene.camera));
     sections.arrays.emplace_back("emitter", describeArray("emitter", scene.emitters));
     sections.arrays.emplace_back("light", describeArray("light", scene.lights));
+    sections.arrays.emplace_back("collider", describeArray("collider", scene.colliders));
     return sections;
 }
 
@@ -144,6 +146,10 @@ void validateScene(const Scene& scene, const SceneSections& sections, Reporter& 
     scene.camera.validate(*sections.single("camera"));
     const auto& lightSections = *sections.array("light");
     for (std::size_t i = 0; i < scene.lights.size(); ++i) scene.lights[i].validate(lightSections[i]);
+    const auto& colliderSections = *sections.array("collider");
+    for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
+        scene.colliders[i].validate(colliderSections[i]);
+    }
 }
 
 }  // namespace globular

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "collider.h"
 #include "emitter.h"
 #include "material.h"
 #include "render_settings.h"
@@ -25,6 +26,7 @@ struct Scene {
     GroundSettings ground;
     OutputSettings output;
     std::vector<EmitterSettings> emitters;  ///< [[emitter]]; one helix when none is given
+    std::vector<ColliderSettings> colliders;  ///< [[collider]]; none by default
     SurfaceSettings surface;
     RenderSettings render;
     CameraSettings camera;

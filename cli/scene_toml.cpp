@@ -87,10 +87,13 @@ SettingValue toValue(const toml::node& node, const SourcePlace& place, const std
     return v;
 }
 
+/// @param nested a key holding nested [[section.nested]] tables, bound by the caller.
 void bindTable(const toml::table& table, SettingsSection& section, const std::string& pathPrefix,
-               const std::string& sourceName, const OverridePlaces& overrides) {
+               const std::string& sourceName, const OverridePlaces& overrides,
+               const std::string& nested = "") {
     for (const auto& [key, node] : table) {
         const std::string k(key.str());
+        if (!nested.empty() && k == nested) continue;
         const std::string path = pathPrefix + "." + k;
         const SourcePlace place = placeOf(node, sourceName, path, overrides);
         if (node.is_table() || node.is_array_of_tables()) {
@@ -195,6 +198,33 @@ std::string arrayIndexPath(const std::string& name, std::size_t index) {
     return name + "." + std::to_string(index);
 }
 
+/// The [[collider.key]] tables of one [[collider]] (at @p path, "collider.0"), in time
+/// order.
+void bindColliderKeys(const toml::table& element, ColliderSettings& collider,
+                      const std::string& path, const std::string& sourceName,
+                      const OverridePlaces& places) {
+    const toml::node* node = element.get("key");
+    if (!node) return;
+    const toml::array* keys = node->as_array();
+    const SourcePlace place = placeOf(*node, sourceName, path + ".key", places);
+    if (!keys || !keys->is_array_of_tables()) {
+        failAt(place, "'key' of a collider must be written as [[collider.key]] sections");
+    }
+    collider.keys.resize(keys->size());
+    const std::string sectionName = "collider[" + path.substr(path.find('.') + 1) + "].key";
+    for (std::size_t k = 0; k < keys->size(); ++k) {
+        SettingsSection section(sectionName + "[" + std::to_string(k) + "]");
+        collider.keys[k].describe(section);
+        bindTable(*keys->get(k)->as_table(), section, path + ".key." + std::to_string(k),
+                  sourceName, places);
+        if (k > 0 && !(collider.keys[k].time > collider.keys[k - 1].time)) {
+            throw SceneError(section.describeKey("time") + ": keys go in time order; " +
+                             std::to_string(collider.keys[k].time) +
+                             " s is not later than the key before it");
+        }
+    }
+}
+
 /// A value as TOML text. Floats use the shortest form that reads back to the same double
 /// (9.8, not 9.8000000000000007), so the resolved scene reproduces the run exactly.
 std::string tomlText(const SettingValue::Data& data) {
@@ -273,8 +303,14 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
                 failAt(place, "'" + name + "' must be written as [[" + name + "]] sections");
             }
             for (std::size_t i = 0; i < array->size(); ++i) {
-                bindTable(*array->get(i)->as_table(), (*elements)[i], arrayIndexPath(name, i),
-                          sourceName, places);
+                const toml::table& element = *array->get(i)->as_table();
+                const bool collider = name == "collider";
+                bindTable(element, (*elements)[i], arrayIndexPath(name, i), sourceName, places,
+                          collider ? "key" : "");
+                if (collider) {
+                    bindColliderKeys(element, scene.colliders[i], arrayIndexPath(name, i),
+                                     sourceName, places);
+                }
             }
         } else {
             const std::string hint = closestMatch(name, sections.names());
@@ -349,6 +385,16 @@ std::string resolvedSceneToml(const Scene& constScene) {
                 out << sectionText(elements[i], [&](const std::string& key) {
                     return emitterKeyApplies(emitter.type, key);
                 });
+            } else if (name == "collider") {
+                ColliderSettings& collider = scene.colliders[i];
+                out << sectionText(elements[i], [&](const std::string& key) {
+                    return colliderKeyApplies(collider.shape, key);
+                });
+                for (ColliderKey& key : collider.keys) {
+                    SettingsSection section("collider.key");
+                    key.describe(section);
+                    out << "\n[[collider.key]]\n" << sectionText(section, everyKey);
+                }
             } else {
                 out << sectionText(elements[i], everyKey);
             }
@@ -363,20 +409,34 @@ std::string sceneKeysMarkdown() {
     SceneSections sections = bindSections(scene, {});
     std::ostringstream out;
     const auto table = [&](const std::string& heading, const SettingsSection& section,
-                           const std::string& type) {
+                           const std::function<bool(const std::string&)>& applies) {
         out << "\n#### `" << heading << "`\n\n| key | default | meaning |\n|---|---|---|\n";
         for (const auto& [key, data] : section.values()) {
-            if (!type.empty() && !emitterKeyApplies(type, key)) continue;
+            if (!applies(key)) continue;
             out << "| `" << key << "` | `" << tomlText(data) << "` | " << section.docOf(key)
                 << " |\n";
         }
     };
-    for (const auto& section : sections.singles) table("[" + section.name() + "]", section, "");
+    const auto everyKey = [](const std::string&) { return true; };
+    for (const auto& section : sections.singles) table("[" + section.name() + "]", section, everyKey);
     const SettingsSection& emitter = sections.array("emitter")->front();
-    for (const char* type : {"helix", "box", "spout", "points"}) {
-        table(std::string("[[emitter]] type = \"") + type + "\"", emitter, type);
+    for (const std::string type : {"helix", "box", "spout", "points"}) {
+        table("[[emitter]] type = \"" + type + "\"", emitter,
+              [&](const std::string& key) { return emitterKeyApplies(type, key); });
     }
-    table("[[light]]", sections.array("light")->front(), "");
+    table("[[light]]", sections.array("light")->front(), everyKey);
+    // A scene has no collider by default: describe one to list its keys.
+    ColliderSettings collider;
+    SettingsSection colliderSection("collider[0]");
+    collider.describe(colliderSection);
+    for (const std::string shape : {"plane", "box", "sphere", "cylinder", "cup"}) {
+        table("[[collider]] shape = \"" + shape + "\"", colliderSection,
+              [&](const std::string& key) { return colliderKeyApplies(shape, key); });
+    }
+    ColliderKey key;
+    SettingsSection keySection("collider.key");
+    key.describe(keySection);
+    table("[[collider.key]]", keySection, everyKey);
     return out.str();
 }
 

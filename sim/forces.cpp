@@ -8,6 +8,8 @@
 #include <array>
 #include <climits>
 
+#include "collider_contact.h"
+
 namespace globular {
 
 namespace {
@@ -175,6 +177,23 @@ float groundForce(const GroundSettings& ground, float y, float vy, float radius)
     return -float(ground.ks) * depth - float(ground.kd) * vy;
 }
 
+void ForceField::addExternalWithColliders(const Globules& g, std::size_t i,
+                                          const std::vector<ColliderMotion>& motions,
+                                          Accelerations& out) const {
+    const double mass = g.mass[i], radius = g.radius[i];
+    const Vec3 p{g.px[i], g.py[i], g.pz[i]}, v{g.vx[i], g.vy[i], g.vz[i]};
+    Vec3 f{out.x[i], out.y[i], out.z[i]};
+    if (mExternal.ground.enabled) f.y += groundForce(mExternal.ground, g.py[i], g.vy[i], g.radius[i]);
+    f = f + mass * mExternal.gravity;
+    for (std::size_t k = 0; k < mExternal.colliders.size(); ++k) {
+        f = f + colliderForce(mExternal.colliders[k], motions[k], p, v, radius, mass, f,
+                              mStepSeconds);
+    }
+    out.x[i] = float(f.x / mass);
+    out.y[i] = float(f.y / mass);
+    out.z[i] = float(f.z / mass);
+}
+
 void ForceField::compute(Globules& g, Accelerations& out) {
     if (mAllPairs) {
         pairForcesAllPairs(g, mPair, out);
@@ -184,6 +203,19 @@ void ForceField::compute(Globules& g, Accelerations& out) {
     const float gx = float(mExternal.gravity.x), gy = float(mExternal.gravity.y),
                 gz = float(mExternal.gravity.z);
     const GroundSettings& ground = mExternal.ground;
+    if (!mExternal.colliders.empty()) {
+        std::vector<ColliderMotion> motions;
+        for (const ColliderSettings& c : mExternal.colliders) {
+            motions.push_back(motionAt(c.keys, mStepTime));
+        }
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.size(), 1024),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                                  addExternalWithColliders(g, i, motions, out);
+                              }
+                          });
+        return;
+    }
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.size(), 4096),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                           for (std::size_t i = r.begin(); i != r.end(); ++i) {

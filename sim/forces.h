@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "collider.h"
 #include "globules.h"
 #include "neighbor_grid.h"
 #include "pair_force.h"
@@ -29,6 +30,7 @@ struct Accelerations {
 struct ExternalForces {
     Vec3 gravity{0, -9.8, 0};
     GroundSettings ground;
+    std::vector<ColliderSettings> colliders;  ///< [[collider]] (collider_contact.h)
 };
 
 /// Sum of pair forces on each globule over all others: the paper's O(N^2) reference.
@@ -70,11 +72,26 @@ public:
     void compute(Globules& globules, Accelerations& out);
 
     const PairForce& pair() const { return mPair; }
+    /// The step the next compute() is for: colliders' static friction needs its length
+    /// and their motion its time.
+    void setStep(double time, double dt) {
+        mStepTime = time;
+        mStepSeconds = dt;
+    }
+
 private:
+    /// Gravity, the ground and the colliders on globule @p i, added to its pair force
+    /// in @p out, and the result turned into an acceleration (all in double: a collider's
+    /// distance and friction are not in the hot loop).
+    void addExternalWithColliders(const Globules& g, std::size_t i,
+                                  const std::vector<ColliderMotion>& motions,
+                                  Accelerations& out) const;
+
     PairForce mPair;
     ExternalForces mExternal;
     bool mAllPairs;
     NeighborWorkspace mWorkspace;
+    double mStepTime = 0, mStepSeconds = 0;
 };
 
 }  // namespace globular

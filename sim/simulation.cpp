@@ -31,7 +31,7 @@ std::string describeRunaway(const Globules& g, long i, double maxSpeed) {
 Simulation::Simulation(const SimulationSetup& setup)
     : mSetup(setup),
       mForces(PairForce::fromMaterial(setup.material),
-              ExternalForces{setup.simulation.gravity, setup.ground},
+              ExternalForces{setup.simulation.gravity, setup.ground, setup.colliders},
               setup.simulation.neighbors == "all_pairs"),
       mIntegrator(makeIntegrator(setup.simulation.integrator)) {
     for (std::size_t k = 0; k < setup.emitters.size(); ++k) {
@@ -81,6 +81,7 @@ std::size_t Simulation::plannedCount() const {
 
 void Simulation::step(double dt) {
     for (std::size_t k = 0; k < mEmitters.size(); ++k) emitFrom(k, mTime);
+    mForces.setStep(mTime, dt);
     // The force computation keeps the globules in neighbour-grid order (see forces.h).
     mIntegrator->step(mGlobules, float(dt),
                       [this](Globules& g, Accelerations& a) { mForces.compute(g, a); });

@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "collider.h"
 #include "emitter.h"
 #include "forces.h"
 #include "globules.h"
@@ -26,6 +27,7 @@ struct SimulationSetup {
     GroundSettings ground;
     std::vector<EmitterSettings> emitters;
     std::filesystem::path sceneDir;  ///< relative emitter paths resolve against it
+    std::vector<ColliderSettings> colliders;  ///< [[collider]]
 };
 
 /// Everything that determines the future of a run: saving and restoring it reproduces
