@@ -118,7 +118,8 @@ void runScene(const RunOptions& options, Reporter& reporter) {
                       std::to_string(range.last));
         const RenderJob job{scene.render,         scene.camera,
                             scene.lights,         scene.ground.enabled ? scene.ground.height : 0,
-                            scene.surface.meshFormat, scene.simulation.fps};
+                            scene.surface.meshFormat, scene.simulation.fps,
+                            scene.colliders};
         runRenderStage(job, ctx);
     }
     const double seconds =

@@ -57,12 +57,12 @@ void MeshPass::drawShadow(const FrameUniforms& f) const {
     glBindVertexArray(0);
 }
 
-void MeshPass::draw(const FrameUniforms& f, bool cullBackFaces) const {
+void MeshPass::draw(const FrameUniforms& f, Cull cull) const {
     if (mIndexCount == 0) return;
     glUseProgram(mProgram.id());
     applyFrameUniforms(mProgram, f);
     glBindVertexArray(mVertexArray.id());
-    if (cullBackFaces) {
+    if (cull != Cull::None) {
         glFrontFace(GL_CCW);
         glCullFace(GL_BACK);
         glEnable(GL_CULL_FACE);

@@ -14,10 +14,11 @@ class MeshPass {
     /// @throw Error when an index is out of range (the GL would read garbage).
     void upload(const MeshView& mesh);
     void drawShadow(const FrameUniforms& frame) const;
-    /// @param cullBackFaces skip triangles wound clockwise on screen: half the work for a
-    ///        closed mesh wound counter-clockwise seen from outside (the surface stage's),
-    ///        which matters because multisampled llvmpipe shades hidden fragments too.
-    void draw(const FrameUniforms& frame, bool cullBackFaces) const;
+    /// Which faces to skip. Back: half the work for a closed mesh wound counter-clockwise
+    /// seen from outside (the surface stage's), which matters because multisampled
+    /// llvmpipe shades hidden fragments too.
+    enum class Cull { None, Back };
+    void draw(const FrameUniforms& frame, Cull cull) const;
 
   private:
     gl::Program mProgram;

@@ -6,6 +6,7 @@
 
 #include "atomic_file.h"
 #include "camera.h"
+#include "collider_mesh.h"
 #include "contact_sheet.h"
 #include "errors.h"
 #include "frame_paths.h"
@@ -62,9 +63,25 @@ void validate(const RenderJob& job, const StageContext& ctx) {
     }
 }
 
-/// Reads every frame once: what the whole animation occupies.
+/// The colliders at frame @p frame's time.
+std::vector<Prop> propsAt(const RenderJob& job, int frame) {
+    std::vector<Prop> props;
+    const double time = double(frame - 1) / job.fps;
+    for (const ColliderSettings& c : job.colliders) {
+        props.push_back({colliderMesh(c, time), drawnSeeThrough(c)});
+    }
+    return props;
+}
+
+/// Reads every frame once: what the whole animation occupies, the set's solids included
+/// (but planes, which have no edge to frame).
 SceneExtent animationExtent(const RenderJob& job, const StageContext& ctx) {
     SceneExtent extent;
+    for (const ColliderSettings& c : job.colliders) {
+        if (c.shape == "plane") continue;
+        const TriangleMesh mesh = colliderMesh(c, double(ctx.firstFrame - 1) / job.fps);
+        extent.addPoints(mesh.positions.data(), mesh.vertexCount());
+    }
     for (int f = ctx.firstFrame; f <= ctx.lastFrame; ++f) {
         if (job.render.mode == "surface") {
             const TriangleMesh mesh = readMesh(job, ctx.outDir, f);
@@ -139,18 +156,20 @@ void runRenderStage(const RenderJob& job, const StageContext& ctx) {
                       int(job.render.shadowMapSize));
     ctx.report().progress("render", 0, total);
     for (int f = ctx.firstFrame; f <= ctx.lastFrame; ++f) {
+        FrameSetup frameSetup = setup;
+        frameSetup.props = propsAt(job, f);
         Image image;
         if (job.render.mode == "surface") {
             const TriangleMesh mesh = readMesh(job, ctx.outDir, f);
             checkRenderMemory(job.render,
                               estimateMeshBytes(mesh.vertexCount(), mesh.triangleCount()),
                               available, "frame " + std::to_string(f));
-            image = renderer.drawMesh(viewOf(mesh), setup);
+            image = renderer.drawMesh(viewOf(mesh), frameSetup);
         } else {
             const Globules globules = readCache(ctx.outDir, f);
             checkRenderMemory(job.render, estimateSphereBytes(globules.size()), available,
                               "frame " + std::to_string(f));
-            image = renderer.drawSpheres(globules, setup);
+            image = renderer.drawSpheres(globules, frameSetup);
         }
         writePng(framePngPath(ctx.outDir, f), image);
         ctx.report().progress("render", f - ctx.firstFrame + 1, total);

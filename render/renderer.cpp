@@ -66,6 +66,35 @@ class SrgbEncoder {
     std::array<uint8_t, 65536> mTable{};
 };
 
+/// The far half of a see-through prop, seen from @p eye: its walls on the camera's side
+/// of the vertical plane through its middle are left out (its floor and roof stay), so
+/// what it contains shows, and what is left is drawn two-sided.
+TriangleMesh cutaway(const TriangleMesh& mesh, Vec3 eye) {
+    Bounds3 box;
+    for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+        box.add(Vec3{mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]});
+    }
+    const Vec3 middle = box.center();
+    const Vec3 toEye = normalized(Vec3{eye.x - middle.x, 0, eye.z - middle.z});
+    TriangleMesh far = mesh;
+    far.triangles.clear();
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        Vec3 centroid{0, 0, 0}, normal{0, 0, 0};
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t v = mesh.triangles[3 * t + k];
+            centroid = centroid + (1.0 / 3) * Vec3{mesh.positions[3 * v], mesh.positions[3 * v + 1],
+                                                   mesh.positions[3 * v + 2]};
+            normal = normal + Vec3{mesh.normals[3 * v], mesh.normals[3 * v + 1], mesh.normals[3 * v + 2]};
+        }
+        const bool horizontal = std::abs(normalized(normal).y) > 0.7;
+        if (horizontal || dot(centroid - middle, toEye) < 0) {
+            far.triangles.insert(far.triangles.end(), mesh.triangles.begin() + 3 * t,
+                                 mesh.triangles.begin() + 3 * t + 3);
+        }
+    }
+    return far;
+}
+
 }  // namespace
 
 double automaticCheckerSize(const Bounds3& content) {
@@ -86,6 +115,7 @@ struct Renderer::Impl {
     detail::ShadowMap shadowMap;
     std::optional<detail::SpherePass> spheres;  // built on first use: a mesh-only run
     std::optional<detail::MeshPass> mesh;       // compiles no sphere shaders, and so on
+    std::vector<detail::MeshPass> props;        // one per prop of the set
     detail::GroundPass ground;
     SrgbEncoder encode;
     std::vector<float> readback;
@@ -154,6 +184,16 @@ struct Renderer::Impl {
         const detail::GroundLook look = groundLook(s, box);
         const FrameUniforms f = uniforms(s, box, look.fadeEnd);
         content.prepare(f);
+        while (props.size() < s.props.size()) props.emplace_back();
+        for (std::size_t k = 0; k < s.props.size(); ++k) {
+            const TriangleMesh m = s.props[k].seeThrough ? cutaway(s.props[k].mesh, s.camera.position)
+                                                         : s.props[k].mesh;
+            props[k].upload({m.positions.data(), m.normals.data(), m.vertexCount(),
+                             m.triangles.data(), m.triangleCount(), true});
+        }
+        FrameUniforms grey = f;  // the set in a neutral light grey, whatever colours the content
+        grey.colorMode = 0;
+        grey.baseColor = srgbToLinear(Vec3{0.78, 0.78, 0.76});
 
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
@@ -162,11 +202,18 @@ struct Renderer::Impl {
         if (f.shadowed) {
             shadowMap.beginDrawing(f.shadowMapSize);
             content.shadow(f);
+            for (std::size_t k = 0; k < s.props.size(); ++k) {
+                if (!s.props[k].seeThrough) props[k].drawShadow(f);
+            }
         }
         target.bindAndClear(srgbToLinear(s.render.background));
         shadowMap.bindForSampling();
         // Content first: the ground behind it is then rejected before shading.
         content.draw(f);
+        for (std::size_t k = 0; k < s.props.size(); ++k) {
+            using Cull = detail::MeshPass::Cull;
+            props[k].draw(grey, s.props[k].seeThrough ? Cull::None : Cull::Back);
+        }
         if (s.render.ground) ground.draw(f, look);
         target.readPixels(readback);
         gl::checkErrors("drawing a frame");
@@ -247,7 +294,9 @@ Image Renderer::drawMesh(const MeshView& mesh, const FrameSetup& setup) {
         const MeshView& mesh;
         void prepare(const FrameUniforms&) { pass.upload(mesh); }
         void shadow(const FrameUniforms& f) { pass.drawShadow(f); }
-        void draw(const FrameUniforms& f) { pass.draw(f, mesh.closed); }
+        void draw(const FrameUniforms& f) {
+            pass.draw(f, mesh.closed ? detail::MeshPass::Cull::Back : detail::MeshPass::Cull::None);
+        }
     };
     return im.draw(s, own.box, Content{*im.mesh, mesh});
 }

@@ -9,12 +9,21 @@
 
 #include "camera.h"
 #include "globules.h"
+#include "mesh.h"
 #include "mesh_view.h"
 #include "png_image.h"
 #include "render_settings.h"
 #include "scene_extent.h"
 
 namespace globular {
+
+/// A solid of the set: a closed mesh wound counter-clockwise seen from outside.
+struct Prop {
+    TriangleMesh mesh;
+    /// Drawn as a cutaway (the walls on the camera's side left out, casting no shadow),
+    /// so what it contains shows; otherwise an opaque solid.
+    bool seeThrough = false;
+};
 
 /// Everything that decides how a frame looks, apart from its globules or mesh.
 struct FrameSetup {
@@ -28,6 +37,8 @@ struct FrameSetup {
     /// Values at the ends of the colour ramp (color_by speed or height). Empty: the
     /// frame's own range.
     ValueRange ramp;
+    /// The set around the content (colliders), drawn in a neutral grey.
+    std::vector<Prop> props;
 };
 
 class Renderer {

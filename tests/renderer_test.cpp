@@ -7,6 +7,7 @@
 #include <numbers>
 #include <random>
 
+#include "collider_mesh.h"
 #include "color_ramp.h"
 #include "errors.h"
 #include "gl_context.h"
@@ -358,6 +359,42 @@ TEST(Renderer, OcclusionCullingAtTheFrameEdgeLeavesTheImageUnchanged) {
         }
         EXPECT_EQ(differing, 0u) << samples << " samples";
     }
+}
+
+}  // namespace
+}  // namespace globular
+
+namespace globular {
+namespace {
+
+/// A box collider of edge 4 around the origin, as the render stage draws it.
+Prop boxProp(bool seeThrough) {
+    ColliderSettings box;
+    box.shape = "box";
+    box.size = {4, 4, 4};
+    box.inside = seeThrough;
+    return {colliderMesh(box, 0.0), drawnSeeThrough(box)};
+}
+
+TEST(RendererProps, AnOpaqueColliderHidesWhatIsInsideIt) {
+    Renderer renderer(kWidth, kHeight, 1);
+    FrameSetup s = flatSetup();
+    s.props = {boxProp(false)};
+    const Image image = renderer.drawSpheres(oneSphere({0, 0, 0}, 1), s);
+    // The box's face towards the camera, lit head-on: its neutral grey (sRGB 0.78).
+    expectColor(image, kWidth / 2, kHeight / 2, {199, 199, 194}, 3);
+}
+
+TEST(RendererProps, AContainerIsACutawayThatShowsItsContent) {
+    Renderer renderer(kWidth, kHeight, 1);
+    FrameSetup s = flatSetup();
+    s.props = {boxProp(true)};
+    const Image image = renderer.drawSpheres(oneSphere({0, 0, 0}, 1), s);
+    expectColor(image, kWidth / 2, kHeight / 2, kBase, 2);  // the sphere, through the cut
+    // Beside the sphere: the tank's far wall, grey, not the white background.
+    const auto wall = rgb(image, kWidth / 2 + 22, kHeight / 2);
+    EXPECT_LT(wall[0], 230);
+    EXPECT_NEAR(wall[0], wall[1], 3);
 }
 
 }  // namespace
