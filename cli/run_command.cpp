@@ -111,7 +111,7 @@ void runScene(const RunOptions& options, Reporter& reporter) {
     if (wants(options.stages, "surface")) {
         reporter.info("surface: frames " + std::to_string(range.first) + "-" +
                       std::to_string(range.last));
-        runSurfaceStage(scene.surface, ctx);
+        runSurfaceStage(scene.surface, ctx, scene.colliders, scene.simulation.fps);
     }
     if (wants(options.stages, "render")) {
         reporter.info("render: frames " + std::to_string(range.first) + "-" +

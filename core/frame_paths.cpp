@@ -23,6 +23,9 @@ std::filesystem::path meshPath(const std::filesystem::path& outDir, int frame,
                                const std::string& extension) {
     return outDir / "mesh" / ("surface." + frameNumber(frame) + "." + extension);
 }
+std::filesystem::path collidersMeshPath(const std::filesystem::path& outDir, int frame) {
+    return outDir / "mesh" / ("colliders." + frameNumber(frame) + ".ply");
+}
 std::filesystem::path framePngPath(const std::filesystem::path& outDir, int frame) {
     return outDir / "frames" / ("frame." + frameNumber(frame) + ".png");
 }

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "atomic_file.h"
+#include "collider_mesh.h"
 #include "errors.h"
 #include "frame_paths.h"
 #include "globule_cache.h"
@@ -84,7 +85,8 @@ SurfaceEstimate checkAllFrames(const SurfaceSettings& settings, const StageConte
 
 }  // namespace
 
-void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx) {
+void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx,
+                     const std::vector<ColliderSettings>& colliders, double fps) {
     settings.validate();
     if (ctx.firstFrame < 1 || ctx.lastFrame < ctx.firstFrame) {
         throw SceneError("surface stage: frame range " + std::to_string(ctx.firstFrame) + "-" +
@@ -144,6 +146,10 @@ void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx) {
                     writeSurfaceVdb(surfaceVdbPath(ctx.outDir, f), frame);
                     writeSurfaceMesh(meshPath(ctx.outDir, f, settings.meshFormat), frame.mesh,
                                      settings.meshFormat);
+                    if (!colliders.empty()) {
+                        writeMeshPly(collidersMeshPath(ctx.outDir, f),
+                                     collidersMesh(colliders, double(f - 1) / fps));
+                    }
                     std::lock_guard lock(reportMutex);
                     if (frame.dropletsRemoved > 0) {
                         report.info("surface: frame " + std::to_string(f) + ": removed " +

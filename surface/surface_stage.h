@@ -4,6 +4,9 @@
 // and each frame is independent, so --frames A-B splits a sequence across machines.
 // OpenVDB-free.
 
+#include <vector>
+
+#include "collider.h"
 #include "stage_context.h"
 #include "surface_settings.h"
 
@@ -23,6 +26,11 @@ namespace globular {
 /// @throw IoError naming a missing or unreadable cache (run the sim stage first) or an
 ///        output that cannot be written.
 /// @throw ResourceError when a frame's estimate exceeds the memory, with the estimate.
-void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx);
+///
+/// With @p colliders, it also writes mesh/colliders.NNNN.ply for each frame: every
+/// collider tessellated at its pose at the frame's time (frame - 1) / @p fps, in world
+/// coordinates, so a DCC tool places the set with the liquid as a mesh sequence.
+void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx,
+                     const std::vector<ColliderSettings>& colliders = {}, double fps = 25);
 
 }  // namespace globular

@@ -138,3 +138,37 @@ TEST(SurfaceStage, RejectsAnEmptyFrameRange) {
 
 }  // namespace
 }  // namespace globular
+
+namespace globular {
+namespace {
+
+TEST(SurfaceStage, WritesTheCollidersAtEachFramesPose) {
+    const fs::path dir = freshDir("colliders");
+    writeCaches(dir, 1, 3);
+    ColliderSettings sphere;
+    sphere.shape = "sphere";
+    sphere.radius = 0.5;
+    ColliderKey start, end;
+    end.time = 0.08;  // frame 3 at 25 fps
+    end.position = {4, 0, 0};
+    sphere.keys = {start, end};
+    NullReporter quiet;
+    runSurfaceStage(SurfaceSettings{}, {dir, 1, 3, &quiet}, {sphere}, 25);
+    for (int f = 1; f <= 3; ++f) {
+        const TriangleMesh mesh = readMeshPly(collidersMeshPath(dir, f));
+        ASSERT_GT(mesh.vertexCount(), 100u);
+        float low = 1e9f, high = -1e9f;
+        for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+            low = std::min(low, mesh.positions[3 * v]);
+            high = std::max(high, mesh.positions[3 * v]);
+        }
+        // The sphere (radius 0.5) moves its centre from x = 0 (frame 1) to x = 4 (frame 3).
+        const double expected = poseAt(sphere.keys, double(f - 1) / 25).translation.x;
+        EXPECT_NEAR(0.5 * (low + high), expected, 1e-5) << f;
+        EXPECT_NEAR(high - low, 1.0, 1e-5) << f;
+    }
+    EXPECT_NEAR(poseAt(sphere.keys, 0.08).translation.x, 4, 1e-12);
+}
+
+}  // namespace
+}  // namespace globular

@@ -110,6 +110,18 @@ void sphere(MeshBuilder& m, Vec3 c, double r) {
 
 }  // namespace
 
+TriangleMesh collidersMesh(const std::vector<ColliderSettings>& colliders, double time) {
+    TriangleMesh all;
+    for (const ColliderSettings& c : colliders) {
+        const TriangleMesh one = colliderMesh(c, time);
+        const auto offset = uint32_t(all.vertexCount());
+        all.positions.insert(all.positions.end(), one.positions.begin(), one.positions.end());
+        all.normals.insert(all.normals.end(), one.normals.begin(), one.normals.end());
+        for (uint32_t index : one.triangles) all.triangles.push_back(offset + index);
+    }
+    return all;
+}
+
 bool drawnSeeThrough(const ColliderSettings& c) { return c.inside || c.shape == "cup"; }
 
 TriangleMesh colliderMesh(const ColliderSettings& c, double time) {
