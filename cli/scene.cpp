@@ -40,12 +40,6 @@ std::size_t sizeOr(const std::vector<std::pair<std::string, std::size_t>>& sizes
     return fallback;
 }
 
-std::string shortNumber(double v) {
-    std::ostringstream out;
-    out << v;
-    return out.str();
-}
-
 /// What the material and the radii derive: the reach of the force (the neighbour grid's
 /// cell) and b2 must be usable numbers, or the error would blame the grid.
 void checkNeighbourReach(const Scene& scene, const SceneSections& sections) {
@@ -57,8 +51,8 @@ void checkNeighbourReach(const Scene& scene, const SceneSections& sections) {
                                    material.describeKey(m.cd > 0 ? "cd" : "preset");
     const double b2 = m.b1 * std::pow(m.r0, m.n - m.m);
     if (!std::isfinite(float(b2)) || !(std::isfinite(window) && window > 0)) {
-        throw SceneError(windowKeys + ": b2 = b1 r0^(n-m) = " + shortNumber(b2) +
-                         " and the force window " + shortNumber(window) +
+        throw SceneError(windowKeys + ": b2 = b1 r0^(n-m) = " + numberForMessage(b2) +
+                         " and the force window " + numberForMessage(window) +
                          " must be finite single-precision numbers");
     }
     const auto& emitters = *sections.array("emitter");
@@ -66,9 +60,9 @@ void checkNeighbourReach(const Scene& scene, const SceneSections& sections) {
         const double reach = window * 2.0 * scene.emitters[k].radius;
         if (!(reach >= kMinReach && reach <= kMaxReach)) {
             throw SceneError(emitters[k].describeKey("radius") + " = " +
-                             shortNumber(scene.emitters[k].radius) + " with the window " +
-                             shortNumber(window) + " (" + windowKeys +
-                             ") gives globules a reach of " + shortNumber(reach) +
+                             numberForMessage(scene.emitters[k].radius) + " with the window " +
+                             numberForMessage(window) + " (" + windowKeys +
+                             ") gives globules a reach of " + numberForMessage(reach) +
                              " world units; it must lie between 1e-4 and 1e6");
         }
     }

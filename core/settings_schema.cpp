@@ -8,13 +8,13 @@
 
 namespace globular {
 
-namespace {
-
-std::string formatNumber(double v) {
+std::string numberForMessage(double v) {
     std::ostringstream out;
     out << v;
     return out.str();
 }
+
+namespace {
 
 std::string typeName(const SettingValue::Data& data) {
     switch (data.index()) {
@@ -29,11 +29,11 @@ std::string typeName(const SettingValue::Data& data) {
 std::string valueText(const SettingValue::Data& data) {
     if (auto* b = std::get_if<bool>(&data)) return *b ? "true" : "false";
     if (auto* i = std::get_if<int64_t>(&data)) return std::to_string(*i);
-    if (auto* d = std::get_if<double>(&data)) return formatNumber(*d);
+    if (auto* d = std::get_if<double>(&data)) return numberForMessage(*d);
     if (auto* s = std::get_if<std::string>(&data)) return "\"" + quoteForMessage(*s) + "\"";
     std::string text = "[";
     for (double v : std::get<std::vector<double>>(data)) {
-        text += (text.size() > 1 ? ", " : "") + formatNumber(v);
+        text += (text.size() > 1 ? ", " : "") + numberForMessage(v);
     }
     return text + "]";
 }
@@ -83,11 +83,11 @@ bool NumberRange::contains(double v) const {
 std::string NumberRange::describe() const {
     const bool hasMin = std::isfinite(min), hasMax = std::isfinite(max);
     if (hasMin && hasMax) {
-        return std::string("in ") + (minExclusive ? "(" : "[") + formatNumber(min) + ", " +
-               formatNumber(max) + (maxExclusive ? ")" : "]");
+        return std::string("in ") + (minExclusive ? "(" : "[") + numberForMessage(min) + ", " +
+               numberForMessage(max) + (maxExclusive ? ")" : "]");
     }
-    if (hasMin) return (minExclusive ? "> " : ">= ") + formatNumber(min);
-    if (hasMax) return (maxExclusive ? "< " : "<= ") + formatNumber(max);
+    if (hasMin) return (minExclusive ? "> " : ">= ") + numberForMessage(min);
+    if (hasMax) return (maxExclusive ? "< " : "<= ") + numberForMessage(max);
     return "finite";
 }
 

@@ -92,6 +92,9 @@ private:
     std::map<std::string, SourcePlace> mPlaces;
 };
 
+/// A number as messages quote it: the shortest default form ("25", "4e+07", "0.001").
+std::string numberForMessage(double value);
+
 /// The closest of @p candidates to @p word by edit distance, or "" when none is close.
 std::string closestMatch(const std::string& word, const std::vector<std::string>& candidates);
 

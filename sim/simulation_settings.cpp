@@ -9,16 +9,6 @@
 
 namespace globular {
 
-namespace {
-
-std::string shortNumber(double v) {
-    std::ostringstream out;
-    out << v;
-    return out.str();
-}
-
-}  // namespace
-
 void SimulationSettings::describe(SettingsSection& s) {
     s.number("dt", dt, NumberRange::positive(), "time step, seconds");
     s.number("fps", fps, NumberRange::positive(), "frames per second");
@@ -50,13 +40,13 @@ void SimulationSettings::validate(const SettingsSection& s, Reporter& reporter) 
     // Limits on what dt and fps derive, checked after the derivation.
     const double frameSeconds = 1.0 / fps;
     if (!(frameSeconds >= kMinFrameSeconds && frameSeconds <= kMaxFrameSeconds)) {
-        throw SceneError(s.describeKey("fps") + ": frames of " + shortNumber(frameSeconds) +
+        throw SceneError(s.describeKey("fps") + ": frames of " + numberForMessage(frameSeconds) +
                          " s; a frame must last between 1e-06 s and 3600 s");
     }
     const double steps = 1.0 / (fps * dt);
     if (!(steps <= double(kMaxStepsPerFrame))) {
-        throw SceneError(s.describeKey("dt") + ": " + shortNumber(steps) +
-                         " steps per frame (at fps " + shortNumber(fps) +
+        throw SceneError(s.describeKey("dt") + ": " + numberForMessage(steps) +
+                         " steps per frame (at fps " + numberForMessage(fps) +
                          ") is more than the limit of " + std::to_string(kMaxStepsPerFrame));
     }
     if (std::abs(stepSeconds() - dt) > 1e-6 * dt) {
