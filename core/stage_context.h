@@ -3,6 +3,7 @@
 // frames, and how to talk to the user.
 
 #include <filesystem>
+#include <string>
 
 #include "reporter.h"
 
@@ -15,6 +16,9 @@ struct StageContext {
     Reporter* reporter = nullptr;  ///< never null when a stage runs
 
     Reporter& report() const { return *reporter; }
+    /// What every stage does first: removes the temporaries a killed run left in outDir
+    /// (removeStaleTemporaries) and says how many, as "@p stage: removed N ...".
+    void sweepTemporaries(const std::string& stage) const;
 };
 
 }  // namespace globular

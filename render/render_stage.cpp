@@ -4,7 +4,6 @@
 #include <filesystem>
 #include <optional>
 
-#include "atomic_file.h"
 #include "camera.h"
 #include "collider_mesh.h"
 #include "contact_sheet.h"
@@ -143,10 +142,7 @@ void writeMovie(const RenderJob& job, const StageContext& ctx) {
 
 void runRenderStage(const RenderJob& job, const StageContext& ctx) {
     validate(job, ctx);
-    if (std::size_t stale = removeStaleTemporaries(ctx.outDir)) {
-        ctx.report().info("render: removed " + std::to_string(stale) +
-                          " temporary files left by an interrupted run");
-    }
+    ctx.sweepTemporaries("render");
     const uint64_t available = availableMemoryBytes();
     checkRenderMemory(job.render, 0, available, "the image");
     const long total = ctx.lastFrame - ctx.firstFrame + 1;

@@ -87,10 +87,7 @@ std::size_t estimateSimulationBytes(std::size_t globules) {
 void runSimStage(const SimulationSetup& setup, const SimStageOptions& options,
                  const StageContext& ctx) {
     ensureWritableDirectory(ctx.outDir);
-    if (std::size_t stale = removeStaleTemporaries(ctx.outDir)) {
-        ctx.report().info("sim: removed " + std::to_string(stale) +
-                          " temporary files left by an interrupted run");
-    }
+    ctx.sweepTemporaries("sim");
     // All emitters together, before any of them places a globule.
     const auto checkMemory = [&](std::size_t globules) {
         const std::size_t need = globules > SIZE_MAX / 256 ? SIZE_MAX

@@ -9,7 +9,6 @@
 #include <optional>
 #include <sstream>
 
-#include "atomic_file.h"
 #include "collider_mesh.h"
 #include "errors.h"
 #include "frame_paths.h"
@@ -93,10 +92,7 @@ void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx,
                          std::to_string(ctx.lastFrame) + " is empty or starts before frame 1");
     }
     Reporter& report = ctx.report();
-    if (std::size_t stale = removeStaleTemporaries(ctx.outDir)) {
-        report.info("surface: removed " + std::to_string(stale) +
-                    " temporary files left by an interrupted run");
-    }
+    ctx.sweepTemporaries("surface");
     const int total = ctx.lastFrame - ctx.firstFrame + 1;
     const uint64_t budget = settings.memoryLimitGiB > 0
                                 ? uint64_t(settings.memoryLimitGiB * 1024.0 * 1024.0 * 1024.0)
