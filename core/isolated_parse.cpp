@@ -95,24 +95,13 @@ uint64_t halfOfPhysicalMemory() {
     ::_exit(0);  // no atexit handlers, no flushing of the parent's buffers
 }
 
-}  // namespace
-
-std::string parseInChild(const fs::path& path, const std::function<std::string()>& parse,
-                         ChildLimits limits) {
+/// One child: forks, collects its answer until @p seconds have passed. @return false when
+/// it ran out of time (it is killed and reaped); otherwise its wait status in @p status.
+bool runOnce(const fs::path& path, const std::function<std::string()>& parse,
+             const ChildLimits& limits, std::string& received, int& status) {
     const auto fail = [&](const std::string& what) {
         return IoError("cannot read " + path.string() + ": " + what);
     };
-    std::error_code ec;
-    const uint64_t size = fs::file_size(path, ec);
-    if (limits.seconds <= 0) limits.seconds = 60.0 + (ec ? 0.0 : double(size) / 10e6);
-    if (limits.memoryBytes == 0) {
-        // Decompressed data may be far larger than the file, but not beyond reason: a
-        // damaged size field then fails fast instead of touching gigabytes.
-        const uint64_t byFile = std::max<uint64_t>(kMinChildMemory, ec ? 0 : size * 64);
-        const uint64_t half = halfOfPhysicalMemory();
-        limits.memoryBytes = half > 0 ? std::min(byFile, half) : byFile;
-    }
-
     int fds[2];
     if (::pipe2(fds, O_CLOEXEC) != 0) {
         throw fail(std::string("cannot open a pipe to a reader process: ") + std::strerror(errno));
@@ -130,7 +119,6 @@ std::string parseInChild(const fs::path& path, const std::function<std::string()
     }
     ::close(fds[1]);
 
-    std::string received;
     bool timedOut = false;
     const auto deadline = std::chrono::steady_clock::now() +
                           std::chrono::milliseconds(int64_t(limits.seconds * 1000));
@@ -154,12 +142,43 @@ std::string parseInChild(const fs::path& path, const std::function<std::string()
     }
     ::close(fds[0]);
     if (timedOut) ::kill(pid, SIGKILL);
-    int status = 0;
     while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
-    if (timedOut) {
+    return !timedOut;
+}
+
+}  // namespace
+
+std::string parseInChild(const fs::path& path, const std::function<std::string()>& parse,
+                         ChildLimits limits) {
+    const auto fail = [&](const std::string& what) {
+        return IoError("cannot read " + path.string() + ": " + what);
+    };
+    std::error_code ec;
+    const uint64_t size = fs::file_size(path, ec);
+    if (limits.seconds <= 0) limits.seconds = 20.0 + (ec ? 0.0 : double(size) / 10e6);
+    if (limits.memoryBytes == 0) {
+        // Decompressed data may be far larger than the file, but not beyond reason: a
+        // damaged size field then fails fast instead of touching gigabytes.
+        const uint64_t byFile = std::max<uint64_t>(kMinChildMemory, ec ? 0 : size * 64);
+        const uint64_t half = halfOfPhysicalMemory();
+        limits.memoryBytes = half > 0 ? std::min(byFile, half) : byFile;
+    }
+
+    // A reader that hangs gets one more try: the child of a process with other threads
+    // can start with a lock held by a thread it does not have (fork copies only the
+    // caller), a hazard of the moment of the fork that a second fork does not share.
+    // A file that makes the reader loop times out twice.
+    std::string received;
+    int status = 0;
+    bool answered = false;
+    for (int attempt = 0; attempt < 2 && !answered; ++attempt) {
+        received.clear();
+        answered = runOnce(path, parse, limits, received, status);
+    }
+    if (!answered) {
         throw fail("reading took longer than " + std::to_string(int(limits.seconds)) +
-                   " s (a damaged file can make the reader loop)");
+                   " s, twice (a damaged file can make the reader loop)");
     }
     if (WIFSIGNALED(status)) {
         const int sig = WTERMSIG(status);

@@ -13,7 +13,7 @@
 namespace globular {
 
 struct ChildLimits {
-    double seconds = 0;        ///< wall time; 0 = 60 s plus 1 s per 10 MB of the file
+    double seconds = 0;        ///< wall time; 0 = 20 s plus 1 s per 10 MB of the file
     uint64_t memoryBytes = 0;  ///< address space the child may add; 0 = 64 times the
                                ///< file's size (at least 256 MiB, at most half of RAM)
 };
@@ -22,8 +22,8 @@ struct ChildLimits {
 /// of this process with only the calling thread: @p parse must not use TBB or start
 /// threads. What it returns must be re-validated by the caller like any input.
 /// @throw IoError "cannot read PATH: ..." with the message of an exception @p parse threw,
-///        or saying that the reader crashed (and with which signal), ran out of time or
-///        memory, or that no child could be started.
+///        or saying that the reader crashed (and with which signal), ran out of time twice
+///        (a hung child is retried once), ran out of memory, or could not be started.
 std::string parseInChild(const std::filesystem::path& path,
                          const std::function<std::string()>& parse, ChildLimits limits = {});
 
