@@ -15,6 +15,7 @@
 #include "file_bytes.h"
 #include "ply_reader.h"
 #include "ply_writer.h"
+#include "settings_schema.h"
 #include "errors.h"
 
 namespace globular {
@@ -207,9 +208,7 @@ void readFaces(const PlyElement& element, PlyCursor& cursor, TriangleMesh& mesh)
                 if (!(index >= 0 && index < double(mesh.vertexCount()))) {
                     throw std::runtime_error(
                         "face " + std::to_string(f) + " refers to vertex " +
-                        (std::isfinite(index) ? std::to_string(static_cast<long long>(index))
-                                              : std::string("nan")) +
-                        " of " + std::to_string(mesh.vertexCount()));
+                        numberForMessage(index) + " of " + std::to_string(mesh.vertexCount()));
                 }
                 polygon.push_back(uint32_t(index));
             }
