@@ -1,6 +1,6 @@
 #pragma once
-// A triangle mesh as plain arrays, and its files. OpenVDB-free: the render stage reads
-// the surface meshes through this header without pulling in OpenVDB.
+// A triangle mesh as plain arrays, and its files: what the surface stage writes, the
+// render stage reads, and mesh colliders (sim) are made of. OpenVDB-free.
 //
 // PLY files are binary little endian with vertex properties x y z nx ny nz (float) and
 // faces as "list uchar int vertex_indices": what Blender, Houdini and MeshLab import.
@@ -38,6 +38,16 @@ void writeMeshObj(const std::filesystem::path& path, const TriangleMesh& mesh);
 /// properties are skipped.
 /// @throw IoError naming @p path and what is wrong (not PLY, truncated, bad index, ...).
 TriangleMesh readMeshPly(const std::filesystem::path& path);
+
+/// Wavefront OBJ: v and vn lines, f lines of v, v//vn, v/vt or v/vt/vn (indices from 1 or
+/// negative from the end), polygons split into fans. Normals are used when there is one
+/// per vertex, as the surface stage writes them; otherwise computed from the faces.
+/// @throw IoError naming @p path and the line at fault.
+TriangleMesh readMeshObj(const std::filesystem::path& path);
+
+/// readMeshObj or readMeshPly by @p path's extension (.obj or .ply, any case).
+/// @throw IoError naming @p path, also for any other extension.
+TriangleMesh readMeshFile(const std::filesystem::path& path);
 
 /// Sets @p mesh.normals to the normalised, area-weighted sum of the face normals around
 /// each vertex (a vertex on no face gets (0, 0, 0)).
