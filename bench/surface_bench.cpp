@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "collider_cut.h"
 #include "frame_paths.h"
 #include "surface_bench_scene.h"
 #include "surface_frame.h"
@@ -88,6 +89,48 @@ void BM_SurfaceFrame(benchmark::State& state) {
     for (auto _ : state) benchmark::DoNotOptimize(surfaceGlobules(g, kSettings));
 }
 BENCHMARK(BM_SurfaceFrame)->Apply(sizes);
+
+/// A wall one unit thick across the middle of the puddle (a knife through a tray of
+/// liquid): a deep cut, through the interior as well as the narrow band.
+ColliderSolid puddleKnife(const Globules& g) {
+    double maxX = 0, maxY = 0;
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        maxX = std::max(maxX, double(g.px[i]));
+        maxY = std::max(maxY, double(g.py[i]));
+    }
+    ColliderSettings knife;
+    knife.shape = "box";
+    knife.center = {0.5 * maxX, 0.5 * maxY, 0.5 * maxX};
+    knife.size = {1.0, 2 * maxY + 8, 2 * maxX + 8};
+    return ColliderSolid(knife, {}, 0);
+}
+
+/// subtractColliders alone: the knife cut out of the puddle's level set.
+void BM_ColliderCut(benchmark::State& state) {
+    const Globules g = benchPuddle(std::size_t(state.range(0)));
+    const auto field = splatMetaballs(g, kSettings.metaballKernel(), kSettings.influence,
+                                      resolveVoxelSize(kSettings, g));
+    const auto levelSet = fieldToLevelSet(*field, kSettings.isoValue, kSettings.bandWidth);
+    const ColliderSolid knife = puddleKnife(g);
+    const std::vector<PlacedSolid> colliders{{&knife, Pose{}}};
+    for (auto _ : state) {
+        state.PauseTiming();
+        const auto copy = levelSet->deepCopy();
+        state.ResumeTiming();
+        subtractColliders(*copy, colliders);
+        state.counters["leaves"] = double(copy->tree().leafCount());
+    }
+}
+BENCHMARK(BM_ColliderCut)->Apply(sizes);
+
+/// BM_SurfaceFrame with the knife cut out (compare the two for the cut's share of a frame).
+void BM_SurfaceFrameWithCollider(benchmark::State& state) {
+    const Globules g = benchPuddle(std::size_t(state.range(0)));
+    const ColliderSolid knife = puddleKnife(g);
+    const std::vector<PlacedSolid> colliders{{&knife, Pose{}}};
+    for (auto _ : state) benchmark::DoNotOptimize(surfaceGlobules(g, kSettings, colliders));
+}
+BENCHMARK(BM_SurfaceFrameWithCollider)->Apply(sizes);
 
 /// Eight frames surfaced and written (VDB + PLY) the way runSurfaceStage does, either
 /// one at a time with parallel steps (range(1) = 1) or two side by side (2).

@@ -3,13 +3,15 @@
 #include <openvdb/io/File.h>
 #include <tbb/parallel_invoke.h>
 
+#include "collider_cut.h"
 #include "errors.h"
 #include "surface_grids.h"
 #include "vdb_archive.h"
 
 namespace globular {
 
-SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& settings) {
+SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& settings,
+                             const std::vector<PlacedSolid>& colliders) {
     settings.validate();
     openvdb::initialize();
 
@@ -25,6 +27,8 @@ SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& se
     }  // the field is the largest grid: free it before the level-set steps
     applyFilters(*levelSet, settings.filterChain());
     frame.dropletsRemoved = removeDroplets(levelSet, settings.dropletVolume);
+    // After the filters, which would round the cut's edges off the walls.
+    if (settings.subtractColliders && !colliders.empty()) subtractColliders(*levelSet, colliders);
 
     auto grids = std::make_shared<SurfaceGrids>();
     grids->surface = levelSet;

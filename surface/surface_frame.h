@@ -7,7 +7,9 @@
 #include <cstddef>
 #include <filesystem>
 #include <memory>
+#include <vector>
 
+#include "collider_solid.h"
 #include "globules.h"
 #include "mesh.h"
 #include "surface_settings.h"
@@ -24,12 +26,17 @@ struct SurfaceFrame {
     std::size_t dropletsRemoved = 0;      ///< pieces below droplet_volume
 };
 
-/// Splats, makes the level set, filters, removes droplets, makes the fog volume and meshes.
-/// Uses TBB inside (limit threads with a tbb::task_arena); the result does not depend on
-/// the thread count.
+/// Splats, makes the level set, filters, removes droplets, cuts out the colliders, makes
+/// the fog volume and meshes. Uses TBB inside (limit threads with a tbb::task_arena); the
+/// result does not depend on the thread count.
+/// @param colliders the solids where the frame puts them; with settings.subtractColliders
+///        each is cut out of the liquid (collider_cut.h), so the surface never shows
+///        through a wall. The solids must outlive the call.
 /// @throw SceneError when @p settings are invalid; SimulationError for a non-finite
-///        globule; ResourceError for a globule beyond the grid's coordinate range.
-SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& settings);
+///        globule or collider pose; ResourceError for a globule beyond the grid's
+///        coordinate range.
+SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& settings,
+                             const std::vector<PlacedSolid>& colliders = {});
 
 /// Writes the grids "surface" and "density" of @p frame to one VDB file, atomically.
 /// @throw IoError naming @p path.

@@ -5,8 +5,9 @@
 // tests; everything else goes through the OpenVDB-free surface_frame.h.
 //
 //   globules --splatMetaballs--> field --fieldToLevelSet--> level set --applyFilters-->
-//   --removeDroplets--> level set "surface" --levelSetToFog--> fog "density"
-//                                           --meshLevelSet---> TriangleMesh
+//   --removeDroplets--> --subtractColliders (collider_cut.h)-->
+//   level set "surface" --levelSetToFog--> fog "density"
+//                       --meshLevelSet---> TriangleMesh
 
 #include <openvdb/openvdb.h>
 

@@ -46,6 +46,9 @@ void SurfaceSettings::describe(SettingsSection& s) {
         .number("droplet_volume", dropletVolume, NumberRange::nonNegative(),
                 "disconnected pieces of surface enclosing less than this are removed, "
                 "world units^3; 0 keeps all")
+        .flag("subtract_colliders", subtractColliders,
+              "cut the colliders' solids out of the liquid, so its surface never shows "
+              "through a wall")
         .number("adaptivity", adaptivity, NumberRange::between(0, 1),
                 "mesh adaptivity: 0 = uniform triangles, 1 = fewest triangles on flat parts")
         .choice("mesh_format", meshFormat, {"ply", "obj"},

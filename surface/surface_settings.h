@@ -10,6 +10,7 @@
 //   iso_value = 0.5           # field level of the surface; a lone globule peaks at 1
 //   filters = "gaussian:1"    # level-set filter chain, syntax in filter_chain.h
 //   droplet_volume = 0.5      # drop disconnected pieces smaller than this (world units^3)
+//   subtract_colliders = true # cut the colliders' solids out of the liquid (collider_cut.h)
 //   mesh_format = "ply"       # ply | obj
 //
 // With the defaults (Wyvill, influence 2, iso 0.5) a lone globule's surface lies exactly
@@ -37,6 +38,7 @@ struct SurfaceSettings {
     double bandWidth = 3.0;          ///< narrow-band half width, voxels
     std::string filters;             ///< level-set filter chain (filter_chain.h)
     double dropletVolume = 0.0;      ///< world units^3; pieces below are removed; 0 keeps all
+    bool subtractColliders = true;   ///< cut the colliders' solids out of the liquid
     double adaptivity = 0.0;         ///< mesh adaptivity in [0, 1]; 0 = uniform
     std::string meshFormat = "ply";  ///< "ply" | "obj"
     int64_t framesInFlight = 0;      ///< frames surfaced at once; 0 = auto (threads, memory)

@@ -54,17 +54,21 @@ TEST(SurfaceSettings, DescribeBindsEveryKeyWithRanges) {
     SettingsSection section("surface");
     settings.describe(section);
     const std::vector<std::string> keys{
-        "voxel_size",      "voxels_per_radius", "kernel",          "influence",      "iso_value",
-        "blinn_sharpness", "band_width",        "filters",         "droplet_volume", "adaptivity",
-        "mesh_format",     "frames_in_flight",  "memory_limit_gib"};
+        "voxel_size",       "voxels_per_radius",  "kernel",     "influence",
+        "iso_value",        "blinn_sharpness",    "band_width", "filters",
+        "droplet_volume",   "subtract_colliders", "adaptivity", "mesh_format",
+        "frames_in_flight", "memory_limit_gib"};
     EXPECT_EQ(section.keys(), keys);
 
     section.assign("voxel_size", {0.05, {"scene.toml", 3, 1}});
     section.assign("kernel", {std::string("murakami"), {"scene.toml", 4, 1}});
     section.assign("frames_in_flight", {int64_t(2), {"scene.toml", 5, 1}});
+    EXPECT_TRUE(settings.subtractColliders);  // on by default
+    section.assign("subtract_colliders", {false, {"scene.toml", 6, 1}});
     EXPECT_EQ(settings.voxelSize, 0.05);
     EXPECT_EQ(settings.kernel, "murakami");
     EXPECT_EQ(settings.framesInFlight, 2);
+    EXPECT_FALSE(settings.subtractColliders);
 
     EXPECT_THROW(section.assign("iso_value", {1.0, {"scene.toml", 6, 1}}), SceneError);
     EXPECT_THROW(section.assign("voxel_size", {-1.0, {"scene.toml", 6, 1}}), SceneError);

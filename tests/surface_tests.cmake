@@ -10,6 +10,10 @@ globular_test(surface_tests
 globular_test(surface_vdb_tests
     SOURCES surface_vdb_test.cpp
     LIBS globular_surface OpenVDB::openvdb)
+# Cutting colliders out of the liquid (collider_cut.h); includes OpenVDB to read the grids.
+globular_test(collider_cut_tests
+    SOURCES collider_cut_test.cpp
+    LIBS globular_surface OpenVDB::openvdb)
 # Damaged and hostile input files: every reader returns or names the file (issue 11).
 globular_test(damaged_files_test
     SOURCES damaged_files_test.cpp

@@ -165,7 +165,9 @@ TEST(FieldToLevelSet, LoneGlobuleGivesItsDistanceWithinTheBand) {
                 const double exact = (levelSet->indexToWorld(ijk) - centre).length() - 1.0;
                 if (std::abs(exact) < (band - 0.2) * h && !acc.isValueOn(ijk)) ++missing;
                 // Inactive voxels and tiles carry the sign: negative inside.
-                if (std::abs(exact) > 0.2 * h) EXPECT_EQ(acc.getValue(ijk) < 0, exact < 0);
+                if (std::abs(exact) > 0.2 * h) {
+                    EXPECT_EQ(acc.getValue(ijk) < 0, exact < 0);
+                }
             }
         }
     }
