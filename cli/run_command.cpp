@@ -111,7 +111,7 @@ void runScene(const RunOptions& options, Reporter& reporter) {
     if (wants(options.stages, "surface")) {
         reporter.info("surface: frames " + std::to_string(range.first) + "-" +
                       std::to_string(range.last));
-        runSurfaceStage(scene.surface, ctx, scene.colliders, scene.simulation.fps);
+        runSurfaceStage(scene.surface, ctx, scene.colliderScene(), scene.simulation.fps);
     }
     if (wants(options.stages, "render")) {
         reporter.info("render: frames " + std::to_string(range.first) + "-" +
@@ -119,7 +119,7 @@ void runScene(const RunOptions& options, Reporter& reporter) {
         const RenderJob job{scene.render,         scene.camera,
                             scene.lights,         scene.ground.enabled ? scene.ground.height : 0,
                             scene.surface.meshFormat, scene.simulation.fps,
-                            scene.colliders};
+                            scene.colliderScene()};
         runRenderStage(job, ctx);
     }
     const double seconds =

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <utility>
 
+#include "collider_solid.h"
 #include "errors.h"
 #include "settings_schema.h"
 
@@ -78,6 +79,10 @@ SimulationSetup Scene::simulationSetup() const {
     return SimulationSetup{simulation, material, ground, emitters, directory(), colliders};
 }
 
+ColliderScene Scene::colliderScene() const {
+    return ColliderScene{colliders, directory(), Simulation::colliderReach(simulationSetup())};
+}
+
 const SettingsSection* SceneSections::single(const std::string& name) const {
     for (const auto& s : singles) {
         if (s.name() == name) return &s;
@@ -142,7 +147,15 @@ void validateScene(const Scene& scene, const SceneSections& sections, Reporter& 
     for (std::size_t i = 0; i < scene.lights.size(); ++i) scene.lights[i].validate(lightSections[i]);
     const auto& colliderSections = *sections.array("collider");
     for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
-        scene.colliders[i].validate(colliderSections[i]);
+        const ColliderSettings& collider = scene.colliders[i];
+        collider.validate(colliderSections[i]);
+        if (collider.shape == "mesh") {
+            try {
+                checkColliderMesh(collider, scene.directory());
+            } catch (const SceneError& e) {
+                throw SceneError(colliderSections[i].describeKey("file") + ": " + e.what());
+            }
+        }
     }
 }
 

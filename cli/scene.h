@@ -36,6 +36,8 @@ struct Scene {
     std::filesystem::path directory() const;  ///< relative paths resolve against it
 
     SimulationSetup simulationSetup() const;
+    /// The colliders as the surface and render stages need them.
+    ColliderScene colliderScene() const;
 };
 
 /// Parses a scene from TOML @p text. @p sourceName names it in messages (a path, or

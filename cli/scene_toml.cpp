@@ -365,6 +365,11 @@ std::string resolvedSceneToml(const Scene& constScene) {
             emitter.file = (scene.directory() / emitter.file).lexically_normal().string();
         }
     }
+    for (ColliderSettings& collider : scene.colliders) {
+        if (!collider.file.empty() && std::filesystem::path(collider.file).is_relative()) {
+            collider.file = (scene.directory() / collider.file).lexically_normal().string();
+        }
+    }
     std::vector<std::pair<std::string, std::size_t>> sizes;
     SceneSections sections = bindSections(scene, sizes);
     std::ostringstream out;
@@ -388,7 +393,7 @@ std::string resolvedSceneToml(const Scene& constScene) {
             } else if (name == "collider") {
                 ColliderSettings& collider = scene.colliders[i];
                 out << sectionText(elements[i], [&](const std::string& key) {
-                    return colliderKeyApplies(collider.shape, key);
+                    return colliderKeyApplies(collider.shape, key, collider.dynamic);
                 });
                 for (ColliderKey& key : collider.keys) {
                     SettingsSection section("collider.key");
@@ -429,10 +434,14 @@ std::string sceneKeysMarkdown() {
     ColliderSettings collider;
     SettingsSection colliderSection("collider[0]");
     collider.describe(colliderSection);
-    for (const std::string shape : {"plane", "box", "sphere", "cylinder", "cup"}) {
+    for (const std::string shape : {"plane", "box", "sphere", "cylinder", "cup", "mesh"}) {
         table("[[collider]] shape = \"" + shape + "\"", colliderSection,
               [&](const std::string& key) { return colliderKeyApplies(shape, key); });
     }
+    table("[[collider]] dynamic = true (any shape but a plane; not with keys or inside)",
+          colliderSection, [&](const std::string& key) {
+              return !colliderKeyApplies("box", key) && colliderKeyApplies("box", key, true);
+          });
     ColliderKey key;
     SettingsSection keySection("collider.key");
     key.describe(keySection);

@@ -16,6 +16,9 @@ std::filesystem::path cacheVdbPath(const std::filesystem::path& outDir, int fram
 std::filesystem::path cachePlyPath(const std::filesystem::path& outDir, int frame) {
     return outDir / "cache" / ("globules." + frameNumber(frame) + ".ply");
 }
+std::filesystem::path colliderPosesPath(const std::filesystem::path& outDir, int frame) {
+    return outDir / "cache" / ("colliders." + frameNumber(frame) + ".toml");
+}
 std::filesystem::path surfaceVdbPath(const std::filesystem::path& outDir, int frame) {
     return outDir / "surface" / ("surface." + frameNumber(frame) + ".vdb");
 }

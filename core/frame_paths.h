@@ -15,6 +15,8 @@ std::filesystem::path surfaceVdbPath(const std::filesystem::path& outDir, int fr
 /// @param extension "ply" or "obj"
 std::filesystem::path meshPath(const std::filesystem::path& outDir, int frame,
                                const std::string& extension);
+/// cache/colliders.NNNN.toml: each collider's pose at the frame's time (the sim stage's).
+std::filesystem::path colliderPosesPath(const std::filesystem::path& outDir, int frame);
 /// mesh/colliders.NNNN.ply: the scene's colliders at the frame's time.
 std::filesystem::path collidersMeshPath(const std::filesystem::path& outDir, int frame);
 std::filesystem::path framePngPath(const std::filesystem::path& outDir, int frame);

@@ -6,6 +6,7 @@
 
 #include "camera.h"
 #include "collider_mesh.h"
+#include "collider_poses.h"
 #include "contact_sheet.h"
 #include "errors.h"
 #include "frame_paths.h"
@@ -62,26 +63,30 @@ void validate(const RenderJob& job, const StageContext& ctx) {
     }
 }
 
-/// The colliders at frame @p frame's time.
-std::vector<Prop> propsAt(const RenderJob& job, int frame) {
+/// The colliders on frame @p frame, where the sim stage left them.
+std::vector<Prop> propsAt(const RenderJob& job, const std::vector<ColliderSolid>& solids,
+                          const StageContext& ctx, int frame) {
     std::vector<Prop> props;
-    const double time = double(frame - 1) / job.fps;
-    for (const ColliderSettings& c : job.colliders) {
-        props.push_back({colliderMesh(c, time), drawnSeeThrough(c)});
+    const std::vector<ColliderSettings>& colliders = job.colliders.colliders;
+    const std::vector<Pose> poses = colliderPosesOnFrame(colliders, ctx.outDir, frame, job.fps);
+    for (std::size_t k = 0; k < colliders.size(); ++k) {
+        props.push_back({colliderMesh(colliders[k], solids[k], poses[k]),
+                         drawnSeeThrough(colliders[k])});
     }
     return props;
 }
 
-/// Reads every frame once: what the whole animation occupies, the set's solids included
-/// (but planes, which have no edge to frame).
-SceneExtent animationExtent(const RenderJob& job, const StageContext& ctx) {
+/// Reads every frame once: what the whole animation occupies, the set's solids on every
+/// frame included (but planes, which have no edge to frame).
+SceneExtent animationExtent(const RenderJob& job, const std::vector<ColliderSolid>& solids,
+                            const StageContext& ctx) {
     SceneExtent extent;
-    for (const ColliderSettings& c : job.colliders) {
-        if (c.shape == "plane") continue;
-        const TriangleMesh mesh = colliderMesh(c, double(ctx.firstFrame - 1) / job.fps);
-        extent.addPoints(mesh.positions.data(), mesh.vertexCount());
-    }
     for (int f = ctx.firstFrame; f <= ctx.lastFrame; ++f) {
+        const std::vector<Prop> props = propsAt(job, solids, ctx, f);
+        for (std::size_t k = 0; k < props.size(); ++k) {
+            if (solids[k].shape() == ColliderShape::Plane) continue;
+            extent.addPoints(props[k].mesh.positions.data(), props[k].mesh.vertexCount());
+        }
         if (job.render.mode == "surface") {
             const TriangleMesh mesh = readMesh(job, ctx.outDir, f);
             extent.addPoints(mesh.positions.data(), mesh.vertexCount());
@@ -147,13 +152,14 @@ void runRenderStage(const RenderJob& job, const StageContext& ctx) {
     checkRenderMemory(job.render, 0, available, "the image");
     const long total = ctx.lastFrame - ctx.firstFrame + 1;
     ctx.report().info("render: measuring " + std::to_string(total) + " frame(s) for framing");
-    const FrameSetup setup = frameSetup(job, animationExtent(job, ctx));
+    const std::vector<ColliderSolid> solids = job.colliders.solids();
+    const FrameSetup setup = frameSetup(job, animationExtent(job, solids, ctx));
     Renderer renderer(int(job.render.width), int(job.render.height), int(job.render.samples),
                       int(job.render.shadowMapSize));
     ctx.report().progress("render", 0, total);
     for (int f = ctx.firstFrame; f <= ctx.lastFrame; ++f) {
         FrameSetup frameSetup = setup;
-        frameSetup.props = propsAt(job, f);
+        frameSetup.props = propsAt(job, solids, ctx, f);
         Image image;
         if (job.render.mode == "surface") {
             const TriangleMesh mesh = readMesh(job, ctx.outDir, f);

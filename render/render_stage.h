@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "collider.h"
+#include "collider_solid.h"
 #include "render_settings.h"
 #include "stage_context.h"
 
@@ -18,7 +18,7 @@ struct RenderJob {
     double groundHeight = 0;            ///< [ground] height, world units
     std::string meshFormat = "ply";     ///< [surface] mesh_format, for mode = surface
     double fps = 25;                    ///< [simulation] fps: the movie's rate by default
-    std::vector<ColliderSettings> colliders;  ///< [[collider]]: drawn at each frame's pose
+    ColliderScene colliders;  ///< [[collider]]: drawn at each frame's pose (collider_poses.h)
 };
 
 /// Renders frames ctx.firstFrame..ctx.lastFrame of ctx.outDir:

@@ -4,12 +4,13 @@
 
 namespace globular {
 
-Vec3 colliderForce(const ColliderSettings& c, const ColliderMotion& motion, Vec3 position,
+Vec3 colliderForce(const Collider& collider, const ColliderMotion& motion, Vec3 position,
                    Vec3 velocity, double radius, double mass, Vec3 otherForce, double dt) {
-    const SurfaceSample s = sampleCollider(c, motion, position);
-    const double phi = c.contact == "surface" ? s.phi - radius : s.phi;
+    const SurfaceSample s = collider.solid.sample(motion.now.toLocal(position));
+    const double phi = collider.surfaceContact ? s.phi - radius : s.phi;
     if (phi >= 0) return {};
-    const Vec3& n = s.normal;
+    const ColliderSettings& c = collider.settings;
+    const Vec3 n = motion.now.rotate(s.normal);
     const Vec3 surfaceVelocity = motion.velocityAt(position);
     // The rest is in the collider's frame of motion; the force is the same in both.
     velocity = velocity - surfaceVelocity;

@@ -8,7 +8,7 @@
 // a globule at rest on a slope with tan(theta) <= mu stays, without jitter); otherwise it
 // slides against mu times the normal force (kinetic friction).
 
-#include "collider.h"
+#include "collider_set.h"
 #include "vec3.h"
 
 namespace globular {
@@ -19,7 +19,7 @@ namespace globular {
 /// @param otherForce the force already on the globule (pairs, gravity, ground, other
 ///        colliders), for the static-friction limit.
 /// @param dt the step about to be taken, seconds.
-Vec3 colliderForce(const ColliderSettings& collider, const ColliderMotion& motion,
+Vec3 colliderForce(const Collider& collider, const ColliderMotion& motion,
                    Vec3 position, Vec3 velocity, double radius, double mass, Vec3 otherForce,
                    double dt);
 

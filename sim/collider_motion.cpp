@@ -92,22 +92,25 @@ Pose poseAt(const std::vector<ColliderKey>& keys, double time) {
     return poseOf(spline(&ColliderKey::position), spline(&ColliderKey::rotation));
 }
 
-Vec3 ColliderMotion::velocityAt(Vec3 p) const {
-    if (!moving) return {};
-    // Where the material now at p was and will be: through the local frame.
-    const Vec3 local = now.toLocal(p);
-    return (1.0 / span) * (after.toWorld(local) - before.toWorld(local));
-}
-
 ColliderMotion motionAt(const std::vector<ColliderKey>& keys, double time) {
     ColliderMotion m;
     m.now = poseAt(keys, time);
-    m.moving = keys.size() > 1;
-    if (m.moving) {
-        m.before = poseAt(keys, time - kVelocityStep);
-        m.after = poseAt(keys, time + kVelocityStep);
-        m.span = 2 * kVelocityStep;
+    m.pivot = m.now.translation;
+    if (keys.size() < 2) return m;
+    const Pose before = poseAt(keys, time - kVelocityStep), after = poseAt(keys, time + kVelocityStep);
+    const double span = 2 * kVelocityStep;
+    m.linear = (1.0 / span) * (after.translation - before.translation);
+    // The rotation over the span, after * before^-1, as an axis times an angle.
+    Eigen::Matrix3d a, b;
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+            a(i, j) = after.rotation[i][j];
+            b(i, j) = before.rotation[i][j];
+        }
     }
+    const Eigen::AngleAxisd turn(a * b.transpose());
+    const Eigen::Vector3d w = (turn.angle() / span) * turn.axis();
+    m.angular = {w.x(), w.y(), w.z()};
     return m;
 }
 

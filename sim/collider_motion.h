@@ -34,17 +34,20 @@ struct Pose {
 /// The pose at @p time of a collider with @p keys (identity without keys).
 Pose poseAt(const std::vector<ColliderKey>& keys, double time);
 
-/// A collider's pose over one step, with what the contact needs to know of its motion.
+/// A collider's pose at one instant, with what the contact needs to know of its motion:
+/// the rigid velocity field v(p) = linear + angular x (p - pivot).
 struct ColliderMotion {
     Pose now;
-    bool moving = false;
-    Pose before, after;  ///< at time -+ kVelocityStep, when moving
-    double span = 0;     ///< seconds between before and after
+    Vec3 pivot{0, 0, 0};    ///< world point that moves at `linear`
+    Vec3 linear{0, 0, 0};   ///< world units / s
+    Vec3 angular{0, 0, 0};  ///< radians / s, world axes
 
     /// Velocity of the collider's material at world point @p p (its surface there).
-    Vec3 velocityAt(Vec3 p) const;
+    Vec3 velocityAt(Vec3 p) const { return linear + cross(angular, p - pivot); }
 };
 
+/// The motion at @p time of a collider with @p keys: the velocities are the spline's
+/// central differences over a tenth of a millisecond.
 ColliderMotion motionAt(const std::vector<ColliderKey>& keys, double time);
 
 }  // namespace globular

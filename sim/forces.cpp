@@ -179,43 +179,58 @@ float groundForce(const GroundSettings& ground, float y, float vy, float radius)
 
 void ForceField::addExternalWithColliders(const Globules& g, std::size_t i,
                                           const std::vector<ColliderMotion>& motions,
-                                          Accelerations& out) const {
+                                          Accelerations& out,
+                                          std::vector<Wrench>& reactions) const {
     const double mass = g.mass[i], radius = g.radius[i];
     const Vec3 p{g.px[i], g.py[i], g.pz[i]}, v{g.vx[i], g.vy[i], g.vz[i]};
     Vec3 f{out.x[i], out.y[i], out.z[i]};
     if (mExternal.ground.enabled) f.y += groundForce(mExternal.ground, g.py[i], g.vy[i], g.radius[i]);
     f = f + mass * mExternal.gravity;
-    for (std::size_t k = 0; k < mExternal.colliders.size(); ++k) {
-        f = f + colliderForce(mExternal.colliders[k], motions[k], p, v, radius, mass, f,
-                              mStepSeconds);
+    const ColliderSet& colliders = mExternal.colliders;
+    for (std::size_t k = 0; k < colliders.size(); ++k) {
+        const Vec3 contact =
+            colliderForce(colliders[k], motions[k], p, v, radius, mass, f, mStepSeconds);
+        f = f + contact;
+        if (colliders[k].body >= 0) {  // the reaction, at the globule's centre
+            Wrench& r = reactions[std::size_t(colliders[k].body)];
+            r.force = r.force - contact;
+            r.torque = r.torque - cross(p - motions[k].pivot, contact);
+        }
     }
     out.x[i] = float(f.x / mass);
     out.y[i] = float(f.y / mass);
     out.z[i] = float(f.z / mass);
 }
 
-void ForceField::compute(Globules& g, Accelerations& out) {
-    if (mAllPairs) {
-        pairForcesAllPairs(g, mPair, out);
-    } else {
-        pairForcesSorting(g, mPair, mWorkspace, out);
+void ForceField::addExternalForces(Globules& g, Accelerations& out) {
+    ColliderSet& colliders = mExternal.colliders;
+    if (!colliders.empty()) {
+        const std::vector<ColliderMotion> motions = colliders.motions();
+        using Reactions = std::vector<Wrench>;
+        // A deterministic reduction: the same split, hence the same sums, on any number
+        // of threads (the bodies' motion stays bit-identical).
+        const Reactions reactions = tbb::parallel_deterministic_reduce(
+            tbb::blocked_range<std::size_t>(0, g.size(), 1024),
+            Reactions(colliders.bodies().size()),
+            [&](const tbb::blocked_range<std::size_t>& r, Reactions sums) {
+                for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                    addExternalWithColliders(g, i, motions, out, sums);
+                }
+                return sums;
+            },
+            [](Reactions a, const Reactions& b) {
+                for (std::size_t k = 0; k < a.size(); ++k) {
+                    a[k].force = a[k].force + b[k].force;
+                    a[k].torque = a[k].torque + b[k].torque;
+                }
+                return a;
+            });
+        colliders.setReactions(reactions);
+        return;
     }
     const float gx = float(mExternal.gravity.x), gy = float(mExternal.gravity.y),
                 gz = float(mExternal.gravity.z);
     const GroundSettings& ground = mExternal.ground;
-    if (!mExternal.colliders.empty()) {
-        std::vector<ColliderMotion> motions;
-        for (const ColliderSettings& c : mExternal.colliders) {
-            motions.push_back(motionAt(c.keys, mStepTime));
-        }
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.size(), 1024),
-                          [&](const tbb::blocked_range<std::size_t>& r) {
-                              for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                                  addExternalWithColliders(g, i, motions, out);
-                              }
-                          });
-        return;
-    }
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.size(), 4096),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                           for (std::size_t i = r.begin(); i != r.end(); ++i) {
@@ -227,6 +242,15 @@ void ForceField::compute(Globules& g, Accelerations& out) {
                               out.z[i] = out.z[i] * invMass + gz;
                           }
                       });
+}
+
+void ForceField::compute(Globules& g, Accelerations& out) {
+    if (mAllPairs) {
+        pairForcesAllPairs(g, mPair, out);
+    } else {
+        pairForcesSorting(g, mPair, mWorkspace, out);
+    }
+    addExternalForces(g, out);
 }
 
 }  // namespace globular

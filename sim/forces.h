@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "collider.h"
+#include "collider_set.h"
 #include "globules.h"
 #include "neighbor_grid.h"
 #include "pair_force.h"
@@ -30,7 +30,7 @@ struct Accelerations {
 struct ExternalForces {
     Vec3 gravity{0, -9.8, 0};
     GroundSettings ground;
-    std::vector<ColliderSettings> colliders;  ///< [[collider]] (collider_contact.h)
+    ColliderSet colliders;  ///< [[collider]] (collider_contact.h)
 };
 
 /// Sum of pair forces on each globule over all others: the paper's O(N^2) reference.
@@ -72,26 +72,30 @@ public:
     void compute(Globules& globules, Accelerations& out);
 
     const PairForce& pair() const { return mPair; }
-    /// The step the next compute() is for: colliders' static friction needs its length
-    /// and their motion its time.
+    /// The step about to be taken: colliders' static friction needs its length, and the
+    /// colliders' clock starts at its time (the integrator moves it on, collider_set.h).
     void setStep(double time, double dt) {
-        mStepTime = time;
+        mExternal.colliders.setTime(time);
         mStepSeconds = dt;
     }
+    ColliderSet& colliders() { return mExternal.colliders; }
+    const ColliderSet& colliders() const { return mExternal.colliders; }
 
 private:
     /// Gravity, the ground and the colliders on globule @p i, added to its pair force
     /// in @p out, and the result turned into an acceleration (all in double: a collider's
-    /// distance and friction are not in the hot loop).
+    /// distance and friction are not in the hot loop). What the globule does to a
+    /// dynamic collider is added to @p reactions (one per body).
     void addExternalWithColliders(const Globules& g, std::size_t i,
                                   const std::vector<ColliderMotion>& motions,
-                                  Accelerations& out) const;
+                                  Accelerations& out, std::vector<Wrench>& reactions) const;
+    void addExternalForces(Globules& g, Accelerations& out);
 
     PairForce mPair;
     ExternalForces mExternal;
     bool mAllPairs;
     NeighborWorkspace mWorkspace;
-    double mStepTime = 0, mStepSeconds = 0;
+    double mStepSeconds = 0;
 };
 
 }  // namespace globular

@@ -17,9 +17,23 @@ void forEachGlobule(std::size_t n, Body&& body) {
                       });
 }
 
+/// Nothing moving besides the globules.
+class Nothing final : public CoIntegrated {
+public:
+    void drift(double) override {}
+    void kick(double) override {}
+};
+
 }  // namespace
 
-void ForwardEuler::step(Globules& g, float dt, const AccelerationFunction& accelerate) {
+void Integrator::step(Globules& g, float dt, const AccelerationFunction& accelerate,
+                      CoIntegrated* partner) {
+    Nothing nothing;
+    advance(g, dt, accelerate, partner ? *partner : nothing);
+}
+
+void ForwardEuler::advance(Globules& g, float dt, const AccelerationFunction& accelerate,
+                           CoIntegrated& partner) {
     accelerate(g, mA);
     forEachGlobule(g.size(), [&](std::size_t i) {
         g.px[i] += dt * g.vx[i];
@@ -29,9 +43,12 @@ void ForwardEuler::step(Globules& g, float dt, const AccelerationFunction& accel
         g.vy[i] += dt * mA.y[i];
         g.vz[i] += dt * mA.z[i];
     });
+    partner.drift(dt);
+    partner.kick(dt);
 }
 
-void SemiImplicitEuler::step(Globules& g, float dt, const AccelerationFunction& accelerate) {
+void SemiImplicitEuler::advance(Globules& g, float dt, const AccelerationFunction& accelerate,
+                                CoIntegrated& partner) {
     accelerate(g, mA);
     forEachGlobule(g.size(), [&](std::size_t i) {
         g.vx[i] += dt * mA.x[i];
@@ -41,9 +58,12 @@ void SemiImplicitEuler::step(Globules& g, float dt, const AccelerationFunction& 
         g.py[i] += dt * g.vy[i];
         g.pz[i] += dt * g.vz[i];
     });
+    partner.kick(dt);
+    partner.drift(dt);
 }
 
-void VelocityVerlet::step(Globules& g, float dt, const AccelerationFunction& accelerate) {
+void VelocityVerlet::advance(Globules& g, float dt, const AccelerationFunction& accelerate,
+                             CoIntegrated& partner) {
     // Globules added since the last step (a spout) invalidate the carried accelerations.
     if (mA.x.size() != g.size()) accelerate(g, mA);
     const float half = 0.5f * dt;
@@ -55,12 +75,15 @@ void VelocityVerlet::step(Globules& g, float dt, const AccelerationFunction& acc
         g.vy[i] += half * mA.y[i];
         g.vz[i] += half * mA.z[i];
     });
+    partner.kick(half);
+    partner.drift(dt);
     accelerate(g, mA);
     forEachGlobule(g.size(), [&](std::size_t i) {
         g.vx[i] += half * mA.x[i];
         g.vy[i] += half * mA.y[i];
         g.vz[i] += half * mA.z[i];
     });
+    partner.kick(half);
 }
 
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name) {

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "co_integrated.h"
 #include "forces.h"
 #include "globules.h"
 
@@ -19,28 +20,33 @@ using AccelerationFunction = std::function<void(Globules&, Accelerations&)>;
 class Integrator {
 public:
     virtual ~Integrator() = default;
-    /// Advances @p globules by @p dt seconds.
-    virtual void step(Globules& globules, float dt, const AccelerationFunction& accelerate) = 0;
+    /// Advances @p globules, and @p partner when given, by @p dt seconds.
+    void step(Globules& globules, float dt, const AccelerationFunction& accelerate,
+              CoIntegrated* partner = nullptr);
     /// Accelerations kept between steps (velocity Verlet), or nullptr. Exact resumption
     /// of a run needs them.
     virtual Accelerations* carriedState() { return nullptr; }
+
+private:
+    virtual void advance(Globules& globules, float dt, const AccelerationFunction& accelerate,
+                         CoIntegrated& partner) = 0;
 };
 
 /// x += dt v; v += dt a, both from the old state: the paper's scheme. First order.
 class ForwardEuler final : public Integrator {
-public:
-    void step(Globules& g, float dt, const AccelerationFunction& accelerate) override;
-
 private:
+    void advance(Globules& g, float dt, const AccelerationFunction& accelerate,
+                 CoIntegrated& partner) override;
+
     Accelerations mA;
 };
 
 /// v += dt a; x += dt v (new velocity). First order, but symplectic: stabler.
 class SemiImplicitEuler final : public Integrator {
-public:
-    void step(Globules& g, float dt, const AccelerationFunction& accelerate) override;
-
 private:
+    void advance(Globules& g, float dt, const AccelerationFunction& accelerate,
+                 CoIntegrated& partner) override;
+
     Accelerations mA;
 };
 
@@ -48,10 +54,12 @@ private:
 /// velocity, so a_new is evaluated at the half-step velocity v + dt/2 a (as in DPD).
 class VelocityVerlet final : public Integrator {
 public:
-    void step(Globules& g, float dt, const AccelerationFunction& accelerate) override;
     Accelerations* carriedState() override { return &mA; }
 
 private:
+    void advance(Globules& g, float dt, const AccelerationFunction& accelerate,
+                 CoIntegrated& partner) override;
+
     Accelerations mA;  ///< accelerations at the current state, valid when sized to N
 };
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "atomic_file.h"
+#include "collider_poses.h"
 #include "errors.h"
 #include "frame_paths.h"
 #include "frame_stats.h"
@@ -36,6 +37,10 @@ void writeFrame(const Simulation& sim, int frame, const SimStageOptions& options
     const Globules& g = sim.globules();
     writeGlobuleVdb(cacheVdbPath(ctx.outDir, frame), g, CacheInfo{frame, sim.time()});
     if (options.output.ply) writeGlobulePly(cachePlyPath(ctx.outDir, frame), g);
+    if (!sim.setup().colliders.empty()) {
+        writeColliderPoses(colliderPosesPath(ctx.outDir, frame), frame, sim.time(),
+                           sim.setup().colliders, sim.colliders().motions());
+    }
     stats.push_back(computeFrameStats(g, frame, sim.time()));
     writeFileAtomically(ctx.outDir / "stats.csv", statsText(stats));
     writeCheckpoint(ctx.outDir / "state.bin",

@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -31,7 +32,9 @@ std::string describeRunaway(const Globules& g, long i, double maxSpeed) {
 Simulation::Simulation(const SimulationSetup& setup)
     : mSetup(setup),
       mForces(PairForce::fromMaterial(setup.material),
-              ExternalForces{setup.simulation.gravity, setup.ground, setup.colliders},
+              ExternalForces{setup.simulation.gravity, setup.ground,
+                             ColliderSet(setup.colliders, setup.sceneDir, Simulation::colliderReach(setup),
+                                         setup.simulation.gravity)},
               setup.simulation.neighbors == "all_pairs"),
       mIntegrator(makeIntegrator(setup.simulation.integrator)) {
     for (std::size_t k = 0; k < setup.emitters.size(); ++k) {
@@ -42,6 +45,12 @@ Simulation::Simulation(const SimulationSetup& setup)
     if (planned > std::size_t(INT32_MAX)) throw ResourceError("more than 2^31 globules requested");
     mGlobules.reserve(planned);
     for (std::size_t k = 0; k < mEmitters.size(); ++k) emitFrom(k, 0.0);
+}
+
+double Simulation::colliderReach(const SimulationSetup& setup) {
+    double largest = 0;
+    for (const EmitterSettings& e : setup.emitters) largest = std::max(largest, e.radius);
+    return 2 * std::max(largest, 1e-3);
 }
 
 std::size_t Simulation::plannedCount(const SimulationSetup& setup) {
@@ -84,7 +93,8 @@ void Simulation::step(double dt) {
     mForces.setStep(mTime, dt);
     // The force computation keeps the globules in neighbour-grid order (see forces.h).
     mIntegrator->step(mGlobules, float(dt),
-                      [this](Globules& g, Accelerations& a) { mForces.compute(g, a); });
+                      [this](Globules& g, Accelerations& a) { mForces.compute(g, a); },
+                      &mForces.colliders());
     mTime += dt;
     ++mSteps;
 }
@@ -124,6 +134,7 @@ void Simulation::advanceFrame(int frame, Reporter& reporter) {
         }
         if (runaway < 0) {
             mTime = frameEnd;  // no drift from summing dt
+            mForces.colliders().setTime(mTime);
             return;
         }
         std::ostringstream why;
@@ -150,6 +161,7 @@ SimulationState Simulation::saveState() const {
     state.nextId = mNextId;
     for (const auto& e : mEmitters) state.emitted.push_back(e->emitted());
     if (auto* carried = mIntegrator->carriedState()) state.carried = *carried;
+    for (const RigidBody& body : mForces.colliders().bodies()) state.bodies.push_back(body.state);
     return state;
 }
 
@@ -158,6 +170,12 @@ void Simulation::restoreState(const SimulationState& state) {
         throw Error("saved state has " + std::to_string(state.emitted.size()) +
                     " emitters, the scene " + std::to_string(mEmitters.size()));
     }
+    std::vector<RigidBody>& bodies = mForces.colliders().bodies();
+    if (state.bodies.size() != bodies.size()) {
+        throw Error("saved state has " + std::to_string(state.bodies.size()) +
+                    " dynamic colliders, the scene " + std::to_string(bodies.size()));
+    }
+    for (std::size_t b = 0; b < bodies.size(); ++b) bodies[b].state = state.bodies[b];
     mGlobules = state.globules;
     mTime = state.time;
     mSteps = state.steps;

@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "collider.h"
+#include "collider_set.h"
 #include "emitter.h"
 #include "forces.h"
 #include "globules.h"
@@ -39,6 +39,7 @@ struct SimulationState {
     int32_t nextId = 0;
     std::vector<std::size_t> emitted;  ///< per emitter
     Accelerations carried;             ///< integrator state (velocity Verlet), may be empty
+    std::vector<RigidBodyState> bodies;  ///< dynamic colliders, in scene order
 };
 
 class Simulation {
@@ -63,9 +64,17 @@ public:
     /// emitters count 0). Saturates at SIZE_MAX.
     static std::size_t plannedCount(const SimulationSetup& setup);
 
+    /// How far outside a mesh collider its distance field must be exact: beyond the
+    /// largest globule radius (contact = "surface" measures from the globule's surface).
+    static double colliderReach(const SimulationSetup& setup);
+
     SimulationState saveState() const;
-    /// @throw Error when @p state does not fit this scene (emitter count).
+    /// @throw Error when @p state does not fit this scene (emitter or body count).
     void restoreState(const SimulationState& state);
+
+    const SimulationSetup& setup() const { return mSetup; }
+    /// The colliders as they stand now (poses for the outputs).
+    const ColliderSet& colliders() const { return mForces.colliders(); }
 
 private:
     /// Emits what emitter @p k has due at @p time.

@@ -12,9 +12,14 @@ namespace globular {
 
 namespace {
 
-// Version 2 ends with a checksum of everything before it; version 1 had none.
-constexpr char kMagic[8] = {'G', 'L', 'B', 'S', 'T', 'A', 'T', '2'};
-constexpr char kOldMagic[8] = {'G', 'L', 'B', 'S', 'T', 'A', 'T', '1'};
+// Version 3 adds the dynamic colliders; version 2 ended with a checksum of everything
+// before it, as 3 does; version 1 had none.
+constexpr char kMagic[8] = {'G', 'L', 'B', 'S', 'T', 'A', 'T', '3'};
+constexpr char kOldMagics[2][8] = {{'G', 'L', 'B', 'S', 'T', 'A', 'T', '1'},
+                                   {'G', 'L', 'B', 'S', 'T', 'A', 'T', '2'}};
+/// A rigid body's state as doubles: position, orientation, velocity, angular momentum,
+/// force, torque.
+constexpr std::size_t kBodyDoubles = 19;
 /// Checkpoints larger than this are refused before they are read.
 constexpr uint64_t kMaxCheckpointBytes = uint64_t(16) << 30;
 
@@ -109,6 +114,13 @@ void writeCheckpoint(const std::filesystem::path& path, const Checkpoint& c) {
     w.array(s.carried.x);
     w.array(s.carried.y);
     w.array(s.carried.z);
+    std::vector<double> bodies;
+    for (const RigidBodyState& b : s.bodies) {
+        const Vec3 vectors[] = {b.position, b.velocity, b.angularMomentum, b.force, b.torque};
+        for (const Vec3& v : vectors) bodies.insert(bodies.end(), {v.x, v.y, v.z});
+        bodies.insert(bodies.end(), b.orientation.begin(), b.orientation.end());
+    }
+    w.array(bodies);
     std::string bytes = w.bytes();
     const uint64_t checksum = fingerprint(bytes);
     bytes.append(reinterpret_cast<const char*>(&checksum), sizeof checksum);
@@ -154,6 +166,19 @@ void validate(const Checkpoint& c, Reader& r) {
     for (const auto* a : {&s.carried.x, &s.carried.y, &s.carried.z}) {
         if (!a->empty() && a->size() != g.size()) r.fail("integrator state of the wrong size");
     }
+    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+        const RigidBodyState& body = s.bodies[b];
+        const Vec3 vectors[] = {body.position, body.velocity, body.angularMomentum, body.force,
+                                body.torque};
+        double norm = 0;
+        for (double q : body.orientation) norm += q * q;
+        bool finite = std::isfinite(norm);
+        for (const Vec3& v : vectors) finite = finite && std::isfinite(v.x + v.y + v.z);
+        if (!finite || std::abs(norm - 1) > 1e-6) {
+            r.fail("dynamic collider " + std::to_string(b) + " has a non-finite state or an "
+                   "orientation that is not a unit quaternion");
+        }
+    }
 }
 
 }  // namespace
@@ -165,10 +190,12 @@ Checkpoint readCheckpoint(const std::filesystem::path& path) {
     } catch (const std::exception& e) {
         throw IoError("cannot read checkpoint " + path.string() + ": " + e.what());
     }
-    if (bytes.compare(0, sizeof kOldMagic, kOldMagic, sizeof kOldMagic) == 0) {
-        throw IoError("checkpoint " + path.string() +
-                      " was written by an older globular (no checksum); run without --resume "
-                      "to start over");
+    for (const char* old : kOldMagics) {
+        if (bytes.compare(0, sizeof kMagic, old, sizeof kMagic) == 0) {
+            throw IoError("checkpoint " + path.string() +
+                          " was written by an older globular; run without --resume to start "
+                          "over");
+        }
     }
     Reader r(std::move(bytes), path);
     for (char ch : kMagic) {
@@ -191,6 +218,18 @@ Checkpoint readCheckpoint(const std::filesystem::path& path) {
     s.carried.x = r.array<float>();
     s.carried.y = r.array<float>();
     s.carried.z = r.array<float>();
+    const std::vector<double> bodies = r.array<double>();
+    if (bodies.size() % kBodyDoubles != 0) r.fail("a dynamic collider's state is cut short");
+    for (std::size_t at = 0; at < bodies.size(); at += kBodyDoubles) {
+        RigidBodyState b;
+        const double* d = &bodies[at];
+        for (Vec3* v : {&b.position, &b.velocity, &b.angularMomentum, &b.force, &b.torque}) {
+            *v = {d[0], d[1], d[2]};
+            d += 3;
+        }
+        for (double& q : b.orientation) q = *d++;
+        s.bodies.push_back(b);
+    }
     for (const auto* a : {&g.py, &g.pz, &g.vx, &g.vy, &g.vz, &g.radius, &g.mass}) {
         if (a->size() != g.px.size()) r.fail("arrays of different lengths");
     }

@@ -110,10 +110,12 @@ void sphere(MeshBuilder& m, Vec3 c, double r) {
 
 }  // namespace
 
-TriangleMesh collidersMesh(const std::vector<ColliderSettings>& colliders, double time) {
+TriangleMesh collidersMesh(const std::vector<ColliderSettings>& colliders,
+                           const std::vector<ColliderSolid>& solids,
+                           const std::vector<Pose>& poses) {
     TriangleMesh all;
-    for (const ColliderSettings& c : colliders) {
-        const TriangleMesh one = colliderMesh(c, time);
+    for (std::size_t k = 0; k < colliders.size(); ++k) {
+        const TriangleMesh one = colliderMesh(colliders[k], solids[k], poses[k]);
         const auto offset = uint32_t(all.vertexCount());
         all.positions.insert(all.positions.end(), one.positions.begin(), one.positions.end());
         all.normals.insert(all.normals.end(), one.normals.begin(), one.normals.end());
@@ -122,10 +124,22 @@ TriangleMesh collidersMesh(const std::vector<ColliderSettings>& colliders, doubl
     return all;
 }
 
-bool drawnSeeThrough(const ColliderSettings& c) { return c.inside || c.shape == "cup"; }
+bool drawnSeeThrough(const ColliderSettings& c) {
+    return c.inside || c.shape == "cup" || (c.shape == "mesh" && c.thickness > 0);
+}
 
-TriangleMesh colliderMesh(const ColliderSettings& c, double time) {
-    const Pose pose = poseAt(c.keys, time);
+TriangleMesh colliderMesh(const ColliderSettings& c, const ColliderSolid& solid, const Pose& pose) {
+    if (solid.shape() == ColliderShape::Mesh) {
+        TriangleMesh mesh = solid.mesh();  // in the collider's frame: place it
+        for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+            float* p = &mesh.positions[3 * v];
+            float* n = &mesh.normals[3 * v];
+            const Vec3 w = pose.toWorld({p[0], p[1], p[2]}), m = pose.rotate({n[0], n[1], n[2]});
+            p[0] = float(w.x), p[1] = float(w.y), p[2] = float(w.z);
+            n[0] = float(m.x), n[1] = float(m.y), n[2] = float(m.z);
+        }
+        return mesh;
+    }
     const bool onBase = c.shape == "cylinder" || c.shape == "cup";
     // A cylinder or cup is built around the centre of its base, then placed there.
     Pose frame = pose;

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "collider_mesh.h"
+#include "collider_poses.h"
 #include "errors.h"
 #include "frame_paths.h"
 #include "globule_cache.h"
@@ -85,7 +86,7 @@ SurfaceEstimate checkAllFrames(const SurfaceSettings& settings, const StageConte
 }  // namespace
 
 void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx,
-                     const std::vector<ColliderSettings>& colliders, double fps) {
+                     const ColliderScene& colliders, double fps) {
     settings.validate();
     if (ctx.firstFrame < 1 || ctx.lastFrame < ctx.firstFrame) {
         throw SceneError("surface stage: frame range " + std::to_string(ctx.firstFrame) + "-" +
@@ -103,6 +104,7 @@ void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx,
             "frames are not checked against it, set [surface] memory_limit_gib");
     }
 
+    const std::vector<ColliderSolid> solids = colliders.solids();
     int largestFrame = ctx.firstFrame;
     const SurfaceEstimate largest = checkAllFrames(settings, ctx, budget, largestFrame);
 
@@ -138,13 +140,19 @@ void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx,
                 // from starting another frame on top of it (and its memory).
                 tbb::this_task_arena::isolate([&] {
                     const Globules globules = readCache(ctx.outDir, f);
-                    const SurfaceFrame frame = surfaceGlobules(globules, settings);
+                    const std::vector<Pose> poses =
+                        colliderPosesOnFrame(colliders.colliders, ctx.outDir, f, fps);
+                    std::vector<PlacedSolid> placed;
+                    for (std::size_t k = 0; k < poses.size(); ++k) {
+                        placed.push_back({&solids[k], poses[k]});
+                    }
+                    const SurfaceFrame frame = surfaceGlobules(globules, settings, placed);
                     writeSurfaceVdb(surfaceVdbPath(ctx.outDir, f), frame);
                     writeSurfaceMesh(meshPath(ctx.outDir, f, settings.meshFormat), frame.mesh,
                                      settings.meshFormat);
-                    if (!colliders.empty()) {
+                    if (!solids.empty()) {
                         writeMeshPly(collidersMeshPath(ctx.outDir, f),
-                                     collidersMesh(colliders, double(f - 1) / fps));
+                                     collidersMesh(colliders.colliders, solids, poses));
                     }
                     std::lock_guard lock(reportMutex);
                     if (frame.dropletsRemoved > 0) {

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "collider.h"
+#include "collider_solid.h"
 #include "stage_context.h"
 #include "surface_settings.h"
 
@@ -27,10 +27,12 @@ namespace globular {
 ///        output that cannot be written.
 /// @throw ResourceError when a frame's estimate exceeds the memory, with the estimate.
 ///
-/// With @p colliders, it also writes mesh/colliders.NNNN.ply for each frame: every
-/// collider tessellated at its pose at the frame's time (frame - 1) / @p fps, in world
-/// coordinates, so a DCC tool places the set with the liquid as a mesh sequence.
+/// With colliders, it cuts their solids out of the liquid (settings.subtractColliders) and
+/// writes mesh/colliders.NNNN.ply for each frame: every collider tessellated at its pose
+/// on the frame (collider_poses.h: the sim stage's, or the keyframes' at (frame - 1) /
+/// @p fps), in world coordinates, so a DCC tool places the set with the liquid as a mesh
+/// sequence.
 void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx,
-                     const std::vector<ColliderSettings>& colliders = {}, double fps = 25);
+                     const ColliderScene& colliders = {}, double fps = 25);
 
 }  // namespace globular

@@ -12,6 +12,7 @@
 #include <tbb/global_control.h>
 
 #include "collider_contact.h"
+#include "collider_solid.h"
 #include "forces.h"
 #include "reporter.h"
 #include "simulation.h"
@@ -19,6 +20,15 @@
 using namespace globular;
 
 namespace {
+
+SurfaceSample sampleCollider(const ColliderSettings& c, Vec3 p) {
+    return ColliderSolid(c, {}, 1).sample(p);
+}
+
+SurfaceSample sampleCollider(const ColliderSettings& c, const ColliderMotion& motion, Vec3 p) {
+    const ColliderSolid solid(c, {}, 1);
+    return PlacedSolid{&solid, motion.now}.sample(p);
+}
 
 ColliderSettings shape(const std::string& name) {
     ColliderSettings c;

@@ -373,7 +373,7 @@ Prop boxProp(bool seeThrough) {
     box.shape = "box";
     box.size = {4, 4, 4};
     box.inside = seeThrough;
-    return {colliderMesh(box, 0.0), drawnSeeThrough(box)};
+    return {colliderMesh(box, ColliderSolid(box, {}, 1), Pose{}), drawnSeeThrough(box)};
 }
 
 TEST(RendererProps, AnOpaqueColliderHidesWhatIsInsideIt) {

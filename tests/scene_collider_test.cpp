@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "errors.h"
 #include "recording_reporter.h"
 #include "scene.h"
@@ -44,7 +47,7 @@ TEST(SceneColliders, NoneByDefaultAndEachSectionRead) {
 TEST(SceneColliders, BadInputNamesFileLineAndKey) {
     EXPECT_EQ(parseError("[[collider]]\nshape = \"teapot\"\n"),
               "glass.toml:2:9: [collider[0]] key 'shape' = \"teapot\": must be one of plane, "
-              "box, sphere, cylinder, cup");
+              "box, sphere, cylinder, cup, mesh");
     EXPECT_EQ(parseError("[[collider]]\nshape = \"sphere\"\nsize = [1, 2, 3]\n"),
               "glass.toml:3:8: [collider[0]] key 'size': does not apply to a sphere collider");
     EXPECT_EQ(parseError("[[collider]]\nshape = \"cup\"\nradius = 1\nthickness = 1\n"),
@@ -101,6 +104,98 @@ TEST(SceneColliders, KeyframeErrorsNameFileLineAndKey) {
               "must be finite numbers");
     EXPECT_EQ(parseError("[[collider]]\n[[collider.key]]\nspeed = 1\n"),
               "glass.toml:3:9: [collider[0].key[0]] key 'speed': unknown key");
+}
+
+}  // namespace
+}  // namespace globular
+
+namespace globular {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A file under a fresh temporary folder with @p text.
+fs::path writeTemp(const std::string& name, const std::string& text) {
+    const fs::path dir = fs::temp_directory_path() / "globular_scene_collider_test";
+    fs::create_directories(dir);
+    const fs::path path = dir / name;
+    std::ofstream(path) << text;
+    return path;
+}
+
+/// @return whether @p text contains every one of @p parts.
+::testing::AssertionResult mentions(const std::string& text, std::initializer_list<std::string> parts) {
+    for (const std::string& part : parts) {
+        if (text.find(part) == std::string::npos) {
+            return ::testing::AssertionFailure() << "'" << part << "' not in: " << text;
+        }
+    }
+    return ::testing::AssertionSuccess();
+}
+
+const char* kTetrahedron =
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+
+TEST(SceneColliders, MeshCollidersReadTheirFileWhenTheSceneIsRead) {
+    const fs::path closed = writeTemp("tetrahedron.obj", kTetrahedron);
+    const Scene scene = parse("[[collider]]\nshape = \"mesh\"\nfile = \"" + closed.string() +
+                              "\"\nscale = 2\ninside = false\n");
+    ASSERT_EQ(scene.colliders.size(), 1u);
+    EXPECT_EQ(scene.colliders[0].scale, 2.0);
+    // An open mesh (one triangle) is a solid only with a thickness.
+    const fs::path open = writeTemp("triangle.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    EXPECT_NO_THROW(parse("[[collider]]\nshape = \"mesh\"\nthickness = 0.1\nfile = \"" +
+                          open.string() + "\"\n"));
+}
+
+TEST(SceneColliders, BadMeshesAndBodiesNameFileLineAndKey) {
+    const fs::path open = writeTemp("open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    EXPECT_TRUE(mentions(
+        parseError("[[collider]]\nshape = \"mesh\"\nfile = \"" + open.string() + "\"\n"),
+        {"glass.toml:3:8: [collider[0]] key 'file': mesh ", "open.obj is not closed",
+         "give the collider a thickness"}));
+    EXPECT_TRUE(mentions(parseError("[[collider]]\nshape = \"mesh\"\nfile = \"/no/such/bowl.obj\"\n"),
+                         {"glass.toml:3:8: [collider[0]] key 'file': ", "/no/such/bowl.obj"}));
+    const fs::path garbage = writeTemp("garbage.obj", "v 0 0 0\nf 1 2 x\n");
+    EXPECT_TRUE(mentions(
+        parseError("[[collider]]\nshape = \"mesh\"\nfile = \"" + garbage.string() + "\"\n"),
+        {"key 'file': ", "garbage.obj:2: "}));
+    const fs::path text = writeTemp("bowl.stl", "solid\n");
+    EXPECT_TRUE(mentions(
+        parseError("[[collider]]\nshape = \"mesh\"\nfile = \"" + text.string() + "\"\n"),
+        {"key 'file': ", "expected an .obj or .ply file"}));
+    EXPECT_EQ(parseError("[[collider]]\nshape = \"mesh\"\n"),
+              "glass.toml:2:9: [collider[0]] key 'shape': a mesh collider needs a file (OBJ or PLY)");
+    EXPECT_EQ(parseError("[[collider]]\nshape = \"cup\"\n"),
+              "glass.toml:2:9: [collider[0]] key 'shape': a cup needs a thickness > 0 (its wall)");
+    EXPECT_EQ(parseError("[[collider]]\nshape = \"sphere\"\nmass = 3\n"),
+              "glass.toml:3:8: [collider[0]] key 'mass': does not apply to a collider without "
+              "dynamic = true");
+    EXPECT_EQ(parseError("[[collider]]\nshape = \"plane\"\ndynamic = true\n"),
+              "glass.toml:3:11: [collider[0]] key 'dynamic': does not apply to a plane collider");
+    EXPECT_TRUE(mentions(
+        parseError("[[collider]]\nshape = \"box\"\ninside = true\ndynamic = true\n"),
+        {"key 'dynamic': a container (inside = true) cannot be dynamic"}));
+    EXPECT_TRUE(mentions(
+        parseError("[[collider]]\ndynamic = true\n[[collider.key]]\ntime = 0\n"),
+        {"key 'dynamic': a collider is moved by [[collider.key]] keyframes or is dynamic"}));
+    EXPECT_EQ(parseError("[[collider]]\ndynamic = true\nmass = 0\n"),
+              "glass.toml:3:8: [collider[0]] key 'mass' = 0: must be in (0, 1e+12]");
+}
+
+TEST(SceneColliders, DynamicCollidersResolveWithTheirBodyKeys) {
+    const Scene scene = parse(
+        "[[collider]]\nshape = \"sphere\"\ndynamic = true\nmass = 40\n"
+        "velocity = [12, 0, 0]\nangular_velocity = [0, 90, 0]\n");
+    EXPECT_TRUE(scene.colliders[0].dynamic);
+    EXPECT_EQ(scene.colliders[0].velocity, (Vec3{12, 0, 0}));
+    const std::string resolved = resolvedSceneToml(scene);
+    EXPECT_NE(resolved.find("mass = 40"), std::string::npos) << resolved;
+    EXPECT_EQ(resolvedSceneToml(parse(resolved)), resolved);
+    // Without dynamic the body's keys are left out of the resolved scene.
+    EXPECT_EQ(resolvedSceneToml(parse("[[collider]]\nshape = \"sphere\"\n"))
+                  .find("angular_velocity"),
+              std::string::npos);
 }
 
 }  // namespace

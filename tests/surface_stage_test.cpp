@@ -153,7 +153,7 @@ TEST(SurfaceStage, WritesTheCollidersAtEachFramesPose) {
     end.position = {4, 0, 0};
     sphere.keys = {start, end};
     NullReporter quiet;
-    runSurfaceStage(SurfaceSettings{}, {dir, 1, 3, &quiet}, {sphere}, 25);
+    runSurfaceStage(SurfaceSettings{}, {dir, 1, 3, &quiet}, ColliderScene{{sphere}, {}, 2}, 25);
     for (int f = 1; f <= 3; ++f) {
         const TriangleMesh mesh = readMeshPly(collidersMeshPath(dir, f));
         ASSERT_GT(mesh.vertexCount(), 100u);
