@@ -1,8 +1,9 @@
 #pragma once
 // Colliders as the renderer draws them: each analytic shape tessellated in its own frame
-// (a mesh collider: its own triangles) and placed at its pose on a frame. Containers (inside = true) and cups are drawn
-// see-through as a cutaway (and so are mesh shells, a bowl): their far walls and floor, not the near walls that would hide
-// the liquid inside (renderer.h, Prop). Other colliders are opaque solids.
+// (a mesh collider: its own triangles) and placed at its pose on a frame. Containers
+// (inside = true), cups and mesh shells (a bowl) are drawn see-through as a cutaway: their
+// far walls and floor, not the near walls that would hide the liquid inside (renderer.h,
+// Prop). Other colliders are opaque solids.
 
 #include <vector>
 
