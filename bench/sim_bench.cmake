@@ -1,6 +1,7 @@
 # Benchmarks of globular_sim.
 add_executable(sim_bench sim_bench.cpp)
 target_link_libraries(sim_bench PRIVATE globular_sim benchmark::benchmark)
+target_compile_definitions(sim_bench PRIVATE GLOBULAR_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 # Peer comparisons (bench/lammps/compare.sh) and bench/run.sh: the workload as files, and
 # a fixed number of steps on it timed at given thread counts.
@@ -8,3 +9,8 @@ add_executable(make_workload make_workload.cpp)
 target_link_libraries(make_workload PRIVATE globular_sim)
 add_executable(sim_steps sim_steps.cpp)
 target_link_libraries(sim_steps PRIVATE globular_sim)
+
+# Mesh colliders: MeshSdf::sample per globule over the bowl of scenes/effectors.
+add_executable(mesh_collider_bench mesh_collider_bench.cpp)
+target_link_libraries(mesh_collider_bench PRIVATE globular_sim benchmark::benchmark)
+target_compile_definitions(mesh_collider_bench PRIVATE GLOBULAR_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

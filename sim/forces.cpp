@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <climits>
+#include <cmath>
+#include <cstdint>
 
 #include "collider_contact.h"
 
@@ -179,7 +181,7 @@ float groundForce(const GroundSettings& ground, float y, float vy, float radius)
 
 void ForceField::addExternalWithColliders(const Globules& g, std::size_t i,
                                           const std::vector<ColliderMotion>& motions,
-                                          Accelerations& out,
+                                          const std::vector<uint8_t>& far, Accelerations& out,
                                           std::vector<Wrench>& reactions) const {
     const double mass = g.mass[i], radius = g.radius[i];
     const Vec3 p{g.px[i], g.py[i], g.pz[i]}, v{g.vx[i], g.vy[i], g.vz[i]};
@@ -188,6 +190,7 @@ void ForceField::addExternalWithColliders(const Globules& g, std::size_t i,
     f = f + mass * mExternal.gravity;
     const ColliderSet& colliders = mExternal.colliders;
     for (std::size_t k = 0; k < colliders.size(); ++k) {
+        if (far[k]) continue;
         const Vec3 contact =
             colliderForce(colliders[k], motions[k], p, v, radius, mass, f, mStepSeconds);
         f = f + contact;
@@ -202,10 +205,51 @@ void ForceField::addExternalWithColliders(const Globules& g, std::size_t i,
     out.z[i] = float(f.z / mass);
 }
 
+void ForceField::addGravityAndGround(const Globules& g, std::size_t i, Accelerations& out) const {
+    float fy = out.y[i];
+    const GroundSettings& ground = mExternal.ground;
+    if (ground.enabled) fy += groundForce(ground, g.py[i], g.vy[i], g.radius[i]);
+    const float invMass = 1.0f / g.mass[i];
+    out.x[i] = out.x[i] * invMass + float(mExternal.gravity.x);
+    out.y[i] = fy * invMass + float(mExternal.gravity.y);
+    out.z[i] = out.z[i] * invMass + float(mExternal.gravity.z);
+}
+
 void ForceField::addExternalForces(Globules& g, Accelerations& out) {
     ColliderSet& colliders = mExternal.colliders;
     if (!colliders.empty()) {
         const std::vector<ColliderMotion> motions = colliders.motions();
+        // Globules lie in neighbour-grid order, so runs of them share a block of space:
+        // a collider whose surface is out of reach of the whole block (its distance at
+        // the block's centre beyond the half-diagonal and the contact's reach) is skipped
+        // for the run. The distance of an exact SDF changes no faster than the point
+        // moves; a mesh's trilinear field up to sqrt(3) times as fast. Skipped colliders
+        // would add exactly zero: the results are the same bit for bit.
+        const float edge = mAllPairs ? 4 * mLargestRadius : mWorkspace.grid.cellSize();
+        const double halfDiagonal = 0.5 * std::sqrt(3.0) * edge;
+        const auto farFrom = [&](const std::array<int64_t, 3>& block, std::vector<uint8_t>& far) {
+            const Vec3 centre{(double(block[0]) + 0.5) * edge, (double(block[1]) + 0.5) * edge,
+                              (double(block[2]) + 0.5) * edge};
+            for (std::size_t k = 0; k < colliders.size(); ++k) {
+                const Collider& c = colliders[k];
+                const double slack = c.solid.shape() == ColliderShape::Mesh ? std::sqrt(3.0) : 1.0;
+                const double reach =
+                    slack * halfDiagonal + (c.surfaceContact ? double(mLargestRadius) : 0.0);
+                far[k] = c.solid.sample(motions[k].now.toLocal(centre)).phi > reach;
+            }
+        };
+        const float invEdge = 1.0f / edge;
+        const auto blockOf = [&](std::size_t i) {
+            const float p[3] = {g.px[i], g.py[i], g.pz[i]};
+            std::array<int64_t, 3> block;
+            for (int a = 0; a < 3; ++a) {
+                const float c = std::floor(p[a] * invEdge);
+                // Beyond a float's exact integers (or not finite): no block, never skipped.
+                if (!(std::abs(c) < 1e7f)) return std::array<int64_t, 3>{INT64_MIN, 0, 0};
+                block[a] = int64_t(c);
+            }
+            return block;
+        };
         using Reactions = std::vector<Wrench>;
         // A deterministic reduction: the same split, hence the same sums, on any number
         // of threads (the bodies' motion stays bit-identical).
@@ -213,8 +257,25 @@ void ForceField::addExternalForces(Globules& g, Accelerations& out) {
             tbb::blocked_range<std::size_t>(0, g.size(), 1024),
             Reactions(colliders.bodies().size()),
             [&](const tbb::blocked_range<std::size_t>& r, Reactions sums) {
+                std::vector<uint8_t> far(colliders.size(), 0);
+                bool allFar = false;
+                std::array<int64_t, 3> current{INT64_MIN, 0, 0};
                 for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                    addExternalWithColliders(g, i, motions, out, sums);
+                    const std::array<int64_t, 3> block = blockOf(i);
+                    if (block != current || block[0] == INT64_MIN) {
+                        current = block;
+                        if (block[0] == INT64_MIN) {
+                            std::fill(far.begin(), far.end(), 0);
+                        } else {
+                            farFrom(block, far);
+                        }
+                        allFar = std::all_of(far.begin(), far.end(), [](uint8_t f) { return f != 0; });
+                    }
+                    if (allFar) {
+                        addGravityAndGround(g, i, out);  // as without colliders
+                    } else {
+                        addExternalWithColliders(g, i, motions, far, out, sums);
+                    }
                 }
                 return sums;
             },
@@ -228,18 +289,10 @@ void ForceField::addExternalForces(Globules& g, Accelerations& out) {
         colliders.setReactions(reactions);
         return;
     }
-    const float gx = float(mExternal.gravity.x), gy = float(mExternal.gravity.y),
-                gz = float(mExternal.gravity.z);
-    const GroundSettings& ground = mExternal.ground;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, g.size(), 4096),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                           for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                              float fy = out.y[i];
-                              if (ground.enabled) fy += groundForce(ground, g.py[i], g.vy[i], g.radius[i]);
-                              const float invMass = 1.0f / g.mass[i];
-                              out.x[i] = out.x[i] * invMass + gx;
-                              out.y[i] = fy * invMass + gy;
-                              out.z[i] = out.z[i] * invMass + gz;
+                              addGravityAndGround(g, i, out);
                           }
                       });
 }
@@ -250,6 +303,7 @@ void ForceField::compute(Globules& g, Accelerations& out) {
     } else {
         pairForcesSorting(g, mPair, mWorkspace, out);
     }
+    if (!mExternal.colliders.empty()) mLargestRadius = radiusRange(g).second;
     addExternalForces(g, out);
 }
 

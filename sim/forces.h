@@ -86,9 +86,13 @@ private:
     /// in @p out, and the result turned into an acceleration (all in double: a collider's
     /// distance and friction are not in the hot loop). What the globule does to a
     /// dynamic collider is added to @p reactions (one per body).
+    /// Colliders whose @p far flag is set are out of reach and skipped.
     void addExternalWithColliders(const Globules& g, std::size_t i,
                                   const std::vector<ColliderMotion>& motions,
-                                  Accelerations& out, std::vector<Wrench>& reactions) const;
+                                  const std::vector<uint8_t>& far, Accelerations& out,
+                                  std::vector<Wrench>& reactions) const;
+    /// Gravity and the ground only, in single precision (the loop without colliders).
+    void addGravityAndGround(const Globules& g, std::size_t i, Accelerations& out) const;
     void addExternalForces(Globules& g, Accelerations& out);
 
     PairForce mPair;
@@ -96,6 +100,7 @@ private:
     bool mAllPairs;
     NeighborWorkspace mWorkspace;
     double mStepSeconds = 0;
+    float mLargestRadius = 1;  ///< of the last compute's globules
 };
 
 }  // namespace globular

@@ -50,7 +50,12 @@ Simulation::Simulation(const SimulationSetup& setup)
 double Simulation::colliderReach(const SimulationSetup& setup) {
     double largest = 0;
     for (const EmitterSettings& e : setup.emitters) largest = std::max(largest, e.radius);
-    return 2 * std::max(largest, 1e-3);
+    largest = std::max(largest, 1e-3);
+    // The force loop skips a collider for a whole neighbour-grid cell (one interaction
+    // cutoff wide) when its distance at the cell's centre exceeds sqrt(3) times the
+    // cell's half-diagonal (forces.cpp): the field must tell that far.
+    const double cell = PairForce::fromMaterial(setup.material).cutoff(float(2 * largest));
+    return 2 * largest + 1.5 * cell + 1;
 }
 
 std::size_t Simulation::plannedCount(const SimulationSetup& setup) {
