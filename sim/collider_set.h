@@ -14,6 +14,7 @@
 #include "collider_solid.h"
 #include "co_integrated.h"
 #include "rigid_body.h"
+#include "simulation_settings.h"
 
 namespace globular {
 
@@ -37,7 +38,8 @@ public:
     ///        largest globule radius, at least).
     /// @throw SceneError naming a collider whose solid cannot be built.
     ColliderSet(const std::vector<ColliderSettings>& settings,
-                const std::filesystem::path& sceneDir, double reach, Vec3 gravity);
+                const std::filesystem::path& sceneDir, double reach, Vec3 gravity,
+                const GroundSettings& ground = GroundSettings{});
 
     bool empty() const { return mColliders.empty(); }
     std::size_t size() const { return mColliders.size(); }
@@ -50,8 +52,11 @@ public:
 
     std::vector<RigidBody>& bodies() { return mBodies; }
     const std::vector<RigidBody>& bodies() const { return mBodies; }
-    /// Sets each body's force and torque to gravity plus @p reactions (one per body: what
-    /// the globules push back with).
+    /// Sets each body's force and torque to gravity, the ground's push and @p reactions
+    /// (one per body: what the globules push back with). A body meets the ground at its
+    /// surface points, each with the ground's k_s and k_d per unit mass on its share of
+    /// the body's mass (as a globule of mass 1 meets it); k_d damps the points' sliding
+    /// too, so a body that lands comes to rest.
     void setReactions(const std::vector<Wrench>& reactions);
 
     void drift(double dt) override;
@@ -61,6 +66,7 @@ private:
     std::vector<Collider> mColliders;
     std::vector<RigidBody> mBodies;
     Vec3 mGravity{0, 0, 0};
+    GroundSettings mGround;
     double mTime = 0;
 };
 

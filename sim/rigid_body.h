@@ -4,7 +4,8 @@
 // linear and angular momentum are exchanged, none made or lost). Its mass is spread
 // uniformly through its solid; the centre of mass and inertia tensor are integrated over
 // the solid on a grid. The integrator moves it in step with the globules (drift and
-// kick, integrator.h), so that it follows the same scheme.
+// kick, integrator.h), so that it follows the same scheme. It rests on the ground through
+// points on its surface (collider_set.h); it does not meet other colliders.
 
 #include <array>
 #include <vector>
@@ -46,6 +47,10 @@ public:
     /// Changes its momenta by @p dt times the current force and torque.
     void kick(double dt);
 
+    /// Points on the solid's surface (its frame), each standing for an equal share of the
+    /// mass where it meets the ground (ColliderSet).
+    const std::vector<Vec3>& surfacePoints() const { return mSurfacePoints; }
+
     double mass() const { return mMass; }
     Vec3 centreOfMass() const { return mCentreOfMass; }  ///< in the collider's frame
     /// The inertia tensor about the centre of mass, in the collider's frame.
@@ -54,9 +59,12 @@ public:
     RigidBodyState state;
 
 private:
+    void collectSurfacePoints(const ColliderSolid& solid);
+
     double mMass;
     Vec3 mCentreOfMass;
     std::array<std::array<double, 3>, 3> mInertia{}, mInverseInertia{};
+    std::vector<Vec3> mSurfacePoints;
 };
 
 }  // namespace globular

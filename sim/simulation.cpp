@@ -34,7 +34,7 @@ Simulation::Simulation(const SimulationSetup& setup)
       mForces(PairForce::fromMaterial(setup.material),
               ExternalForces{setup.simulation.gravity, setup.ground,
                              ColliderSet(setup.colliders, setup.sceneDir, Simulation::colliderReach(setup),
-                                         setup.simulation.gravity)},
+                                         setup.simulation.gravity, setup.ground)},
               setup.simulation.neighbors == "all_pairs"),
       mIntegrator(makeIntegrator(setup.simulation.integrator)) {
     for (std::size_t k = 0; k < setup.emitters.size(); ++k) {

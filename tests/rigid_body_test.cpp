@@ -91,6 +91,33 @@ TEST(RigidBody, FallsFreelyAndSpinsAsTheAnalyticMotion) {
     EXPECT_NEAR(length(b.pose().toWorld(body.center) - b.state.position), 0, 1e-9);
 }
 
+TEST(RigidBody, LandsOnTheGroundAndComesToRest) {
+    SimulationSetup setup;  // the ground on, at y = 0, no globules
+    ColliderSettings ball = ::ball(1.5, 150);
+    ball.center = {0, 4, 0};
+    ColliderSettings box = ::ball(1, 20);
+    box.shape = "box";
+    box.size = {2, 1, 2};
+    box.center = {5, 3, 0};
+    setup.colliders = {ball, box};
+    Simulation sim(setup);
+    NullReporter quiet;
+    for (int f = 2; f <= 76; ++f) sim.advanceFrame(f, quiet);  // 3 s
+    const RigidBody& b = sim.colliders().bodies()[0];
+    // Each surface point carries the ground's k_s per unit mass on its share: a sphere
+    // sinks until the cap below the ground carries its weight, depth sqrt(4 R g / k_s)
+    // (the cap holds a fraction d / 2R of the points, at mean depth d / 2).
+    const double sink = std::sqrt(4 * 1.5 * 9.8 / 5000);
+    EXPECT_NEAR(b.state.position.y, 1.5 - sink, 0.3 * sink);
+    EXPECT_LT(length(b.state.velocity), 1e-3);
+    EXPECT_LT(length(b.angularVelocity()), 1e-3);
+    // A box lands flat on its bottom face, a sixth of its surface: depth about 6 g / k_s.
+    const RigidBody& flat = sim.colliders().bodies()[1];
+    EXPECT_NEAR(flat.state.position.y, 0.5, 0.05);
+    EXPECT_LT(length(flat.state.velocity), 1e-3);
+    EXPECT_NEAR(flat.pose().rotate({0, 1, 0}).y, 1, 1e-6);  // still upright
+}
+
 /// A block of the paper's solid at rest, weightless, and a ball fired into it.
 SimulationSetup projectileIntoBlock() {
     SimulationSetup setup = emptySetup();
