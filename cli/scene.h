@@ -44,9 +44,12 @@ struct Scene {
 /// "<default scene>"). @p overrides are --set arguments "dotted.key=value", applied
 /// over the text: `material.b1=3`, `emitter.0.count=100`, `render.mode=surface`.
 /// Warnings (values outside the paper's recommended ranges) go to @p reporter.
+/// @p file, when given, is the scene's own path: relative paths in it (a mesh collider's
+/// file, which is read to check it) resolve against its folder, else the current one.
 /// @throw SceneError naming file, line, column and key for every kind of bad input.
 Scene parseScene(const std::string& text, const std::string& sourceName,
-                 const std::vector<std::string>& overrides, Reporter& reporter);
+                 const std::vector<std::string>& overrides, Reporter& reporter,
+                 const std::filesystem::path& file = {});
 
 /// Reads and parses a scene file. @throw SceneError / IoError naming the file.
 Scene loadScene(const std::filesystem::path& file, const std::vector<std::string>& overrides,

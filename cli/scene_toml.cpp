@@ -271,7 +271,8 @@ std::string sectionText(const SettingsSection& section,
 }  // namespace
 
 Scene parseScene(const std::string& text, const std::string& sourceName,
-                 const std::vector<std::string>& overrides, Reporter& reporter) {
+                 const std::vector<std::string>& overrides, Reporter& reporter,
+                 const std::filesystem::path& file) {
     toml::table root;
     try {
         root = toml::parse(text, sourceName);
@@ -285,6 +286,7 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
     for (const auto& o : overrides) applyOverride(root, o, places);
 
     Scene scene;
+    scene.file = file;
     std::vector<std::pair<std::string, std::size_t>> arraySizes;
     for (const auto& [key, node] : root) {
         if (auto* array = node.as_array()) arraySizes.emplace_back(std::string(key.str()), array->size());
@@ -351,9 +353,7 @@ Scene loadScene(const std::filesystem::path& file, const std::vector<std::string
         }
     }
     if (in.bad()) throw SceneError("cannot read scene file " + name);
-    Scene scene = parseScene(text, file.string(), overrides, reporter);
-    scene.file = std::filesystem::absolute(file);
-    return scene;
+    return parseScene(text, file.string(), overrides, reporter, std::filesystem::absolute(file));
 }
 
 std::string resolvedSceneToml(const Scene& constScene) {

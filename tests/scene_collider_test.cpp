@@ -148,6 +148,16 @@ TEST(SceneColliders, MeshCollidersReadTheirFileWhenTheSceneIsRead) {
                           open.string() + "\"\n"));
 }
 
+TEST(SceneColliders, AMeshFileIsFoundBesideTheSceneFileFromAnyFolder) {
+    const fs::path mesh = writeTemp("beside.obj", kTetrahedron);
+    const fs::path scene = writeTemp("beside.toml", "[[collider]]\nshape = \"mesh\"\nfile = \"beside.obj\"\n");
+    NullReporter quiet;
+    const Scene loaded = loadScene(scene, {}, quiet);  // the tests run in another folder
+    ASSERT_NE(fs::current_path(), mesh.parent_path());
+    EXPECT_EQ(loaded.colliderScene().solids().size(), 1u);
+    EXPECT_NE(resolvedSceneToml(loaded).find("file = \"" + mesh.string() + "\""), std::string::npos);
+}
+
 TEST(SceneColliders, BadMeshesAndBodiesNameFileLineAndKey) {
     const fs::path open = writeTemp("open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     EXPECT_TRUE(mentions(
