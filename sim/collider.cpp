@@ -59,7 +59,8 @@ void ColliderSettings::describe(SettingsSection& s) {
     s.number("scale", scale, NumberRange{0, 1e6, true}, "mesh: scale of the file's coordinates");
     s.number("voxel_size", voxelSize, NumberRange::between(0, 1e6),
              "mesh: voxel of its signed distance field, world units (0: 1/100 of the "
-             "mesh's longest extent, at most half the thickness)");
+             "mesh's longest extent, or 1/64 of the globules' reach if coarser, at most "
+             "half the thickness)");
     s.flag("inside", inside,
            "box, sphere, cylinder, closed mesh: keep globules inside (a closed container)");
     s.number("ks", ks, NumberRange::nonNegative(), "penalty stiffness (eq. 9)");

@@ -138,13 +138,17 @@ ColliderSolid::ColliderSolid(const ColliderSettings& c, const fs::path& sceneDir
             }
             const Vec3 extent = hi - lo;
             const double longest = std::max({extent.x, extent.y, extent.z, 0.0});
-            // A shell must be two voxels thick at least (mesh_sdf.h).
-            const double voxel = c.voxelSize > 0   ? c.voxelSize
-                                 : c.thickness > 0 ? std::min(longest / 100, c.thickness / 2)
-                                                   : longest / 100;
-            const std::string name =
-                "[[collider]] '" + c.name + "' (" + meshPathOf(c, sceneDir).string() + ")";
-            mSdf = std::make_shared<MeshSdf>(*mesh, voxel, c.thickness, reach, name);
+            // Automatic: 1/100 of the mesh, but no finer than the field's reach needs (a
+            // band of 64 voxels), and a shell two voxels thick at least (mesh_sdf.h).
+            double voxel = std::max(longest / 100, reach / 64);
+            if (c.thickness > 0) voxel = std::min(voxel, c.thickness / 2);
+            if (c.voxelSize > 0) voxel = c.voxelSize;
+            try {
+                mSdf = std::make_shared<MeshSdf>(*mesh, voxel, c.thickness, reach,
+                                                 meshPathOf(c, sceneDir).string());
+            } catch (const SceneError& e) {
+                throw SceneError("[[collider]] '" + c.name + "': " + e.what());
+            }
             mBoundsMin = mSdf->boundsMin();
             mBoundsMax = mSdf->boundsMax();
             mMesh = std::move(mesh);
