@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "errors.h"
+#include "grid_compare.h"
 #include "mesh_topology.h"
 #include "surface_frame.h"
 #include "surface_grids.h"
@@ -100,19 +101,7 @@ float levelSetAt(const SurfaceFrame& frame, Vec3 world) {
 void expectSameFrame(const SurfaceFrame& a, const SurfaceFrame& b) {
     EXPECT_EQ(a.mesh.positions, b.mesh.positions);
     EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
-    const auto& ga = *a.grids->surface;
-    const auto& gb = *b.grids->surface;
-    EXPECT_EQ(ga.activeVoxelCount(), gb.activeVoxelCount());
-    EXPECT_EQ(ga.tree().leafCount(), gb.tree().leafCount());
-    auto other = gb.getConstAccessor();
-    std::size_t differing = 0;
-    for (auto it = ga.cbeginValueAll(); it; ++it) {
-        if (other.getValue(it.getCoord()) != *it ||
-            other.isValueOn(it.getCoord()) != it.isValueOn()) {
-            ++differing;
-        }
-    }
-    EXPECT_EQ(differing, 0u);
+    expectSameGrid(*a.grids->surface, *b.grids->surface);
 }
 
 TEST(ColliderCut, SolidLevelSetIsPhiInTheBandAndTheBackgroundBeyond) {

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "globule_bins.h"
+#include "grid_compare.h"
 #include "surface_estimate.h"
 #include "surface_frame.h"
 #include "surface_grids.h"
@@ -37,20 +38,6 @@ std::string run(const std::string& command) {
         out.append(buffer.data(), n);
     pclose(pipe);
     return out;
-}
-
-void expectSameGrid(const openvdb::FloatGrid& a, const openvdb::FloatGrid& b) {
-    EXPECT_EQ(a.activeVoxelCount(), b.activeVoxelCount());
-    EXPECT_EQ(a.tree().leafCount(), b.tree().leafCount());
-    auto other = b.getConstAccessor();
-    std::size_t differing = 0;
-    for (auto it = a.cbeginValueAll(); it; ++it) {
-        if (other.getValue(it.getCoord()) != *it ||
-            other.isValueOn(it.getCoord()) != it.isValueOn()) {
-            ++differing;
-        }
-    }
-    EXPECT_EQ(differing, 0u);
 }
 
 TEST(MetaballSplat, FieldIsTheKernelSumOverExactlyTheInfluenceSpheres) {
