@@ -41,11 +41,10 @@ std::size_t sizeOr(const std::vector<std::pair<std::string, std::size_t>>& sizes
     return fallback;
 }
 
-/// What the material and the radii derive: the reach of the force (the neighbour grid's
+/// What a material and the radii derive: the reach of the force (the neighbour grid's
 /// cell) and b2 must be usable numbers, or the error would blame the grid.
-void checkNeighbourReach(const Scene& scene, const SceneSections& sections) {
-    const MaterialSettings& m = scene.material;
-    const SettingsSection& material = *sections.single("material");
+void checkNeighbourReach(const MaterialSettings& m, const SettingsSection& material,
+                         const Scene& scene, const SceneSections& sections) {
     const double window = std::max(m.resolvedCr(), m.resolvedCd());
     const std::string windowKeys = material.describeKey("r0") + ", " +
                                    material.describeKey(m.cr > 0 ? "cr" : "alpha") + " or " +
@@ -69,6 +68,17 @@ void checkNeighbourReach(const Scene& scene, const SceneSections& sections) {
     }
 }
 
+/// checkNeighbourReach for every material.
+void checkNeighbourReach(const Scene& scene, const SceneSections& sections) {
+    const SettingsSection* place = sections.single("material");
+    if (!place) place = &sections.array("material")->front();
+    for (std::size_t k = 0; k < scene.otherMaterials.size(); ++k) {
+        checkNeighbourReach(scene.otherMaterials[k], (*sections.array("material"))[k + 1],
+                            scene, sections);
+    }
+    checkNeighbourReach(scene.material, *place, scene, sections);
+}
+
 }  // namespace
 
 std::filesystem::path Scene::directory() const {
@@ -76,7 +86,8 @@ std::filesystem::path Scene::directory() const {
 }
 
 SimulationSetup Scene::simulationSetup() const {
-    return SimulationSetup{simulation, material, ground, emitters, directory(), colliders};
+    return SimulationSetup{simulation, material,       ground,       emitters, directory(),
+                           colliders,  otherMaterials, materialPairs};
 }
 
 ColliderScene Scene::colliderScene() const {
@@ -118,9 +129,15 @@ SceneSections bindSections(Scene& scene,
     scene.emitters.resize(sizeOr(arraySizes, "emitter", std::max<std::size_t>(1, scene.emitters.size())));
     scene.lights.resize(sizeOr(arraySizes, "light", std::max<std::size_t>(1, scene.lights.size())));
     scene.colliders.resize(sizeOr(arraySizes, "collider", scene.colliders.size()));
+    scene.materialPairs.resize(sizeOr(arraySizes, "material_pair", scene.materialPairs.size()));
+    // [material], or [[material]] sections: the first binds to `material`, the rest to
+    // `otherMaterials`.
+    const std::size_t materials = sizeOr(arraySizes, "material", 0);
+    if (materials > 0) scene.otherMaterials.resize(materials - 1);
+    const bool materialArray = materials > 0 || scene.namedMaterials();
     SceneSections sections;
     sections.singles.push_back(describeSection("simulation", scene.simulation));
-    sections.singles.push_back(describeSection("material", scene.material));
+    if (!materialArray) sections.singles.push_back(describeSection("material", scene.material));
     sections.singles.push_back(describeSection("ground", scene.ground));
     sections.singles.push_back(describeSection("output", scene.output));
     sections.singles.push_back(describeSection("surface", scene.surface));
@@ -129,16 +146,91 @@ SceneSections bindSections(Scene& scene,
     sections.arrays.emplace_back("emitter", describeArray("emitter", scene.emitters));
     sections.arrays.emplace_back("light", describeArray("light", scene.lights));
     sections.arrays.emplace_back("collider", describeArray("collider", scene.colliders));
+    if (materialArray) {
+        std::vector<SettingsSection> all{describeSection("material[0]", scene.material)};
+        for (std::size_t i = 0; i < scene.otherMaterials.size(); ++i) {
+            all.push_back(describeSection("material[" + std::to_string(i + 1) + "]",
+                                          scene.otherMaterials[i]));
+        }
+        sections.arrays.emplace_back("material", std::move(all));
+    }
+    sections.arrays.emplace_back("material_pair",
+                                 describeArray("material_pair", scene.materialPairs));
     return sections;
+}
+
+/// The material sections in order: [material] alone, or every [[material]].
+std::vector<const SettingsSection*> materialSections(const SceneSections& sections) {
+    if (const SettingsSection* single = sections.single("material")) return {single};
+    std::vector<const SettingsSection*> all;
+    for (const SettingsSection& s : *sections.array("material")) all.push_back(&s);
+    return all;
+}
+
+/// Names of several materials: each given, once; emitters and pairs name existing ones.
+void checkMaterialNames(const Scene& scene, const SceneSections& sections) {
+    const std::vector<MaterialSettings> materials = scene.simulationSetup().materials();
+    const std::vector<const SettingsSection*> places = materialSections(sections);
+    for (std::size_t k = 0; k < materials.size() && materials.size() > 1; ++k) {
+        if (materials[k].name.empty()) {
+            throw SceneError(places[k]->describeKey("name") +
+                             ": with several [[material]] sections each needs a name");
+        }
+        for (std::size_t j = 0; j < k; ++j) {
+            if (materials[j].name == materials[k].name) {
+                throw SceneError(places[k]->describeKey("name") + " = \"" + materials[k].name +
+                                 "\": another [[material]] has this name");
+            }
+        }
+    }
+    std::string known;
+    for (const MaterialSettings& m : materials) known += (known.empty() ? "" : ", ") + m.name;
+    const auto check = [&](const SettingsSection& section, const std::string& key,
+                           const std::string& name) {
+        if (materialIndex(materials, name) < 0) {
+            throw SceneError(section.describeKey(key) + " = \"" + quoteForMessage(name, 60) +
+                             "\": no [[material]] has this name (there are: " + known + ")");
+        }
+    };
+    const auto& emitterSections = *sections.array("emitter");
+    for (std::size_t i = 0; i < scene.emitters.size(); ++i) {
+        check(emitterSections[i], "material", scene.emitters[i].material);
+    }
+    const auto& pairSections = *sections.array("material_pair");
+    for (std::size_t i = 0; i < scene.materialPairs.size(); ++i) {
+        const MaterialPairSettings& p = scene.materialPairs[i];
+        for (const auto& [key, name] : {std::pair{"a", p.a}, std::pair{"b", p.b}}) {
+            if (name.empty()) {
+                throw SceneError(pairSections[i].describeKey(key) + ": a pair names two materials");
+            }
+            check(pairSections[i], key, name);
+        }
+        if (p.a == p.b) {
+            throw SceneError(pairSections[i].describeKey("b") +
+                             ": a pair names two different materials");
+        }
+        for (std::size_t j = 0; j < i; ++j) {
+            const MaterialPairSettings& q = scene.materialPairs[j];
+            if ((q.a == p.a && q.b == p.b) || (q.a == p.b && q.b == p.a)) {
+                throw SceneError(pairSections[i].describeKey("a") + ": the pair '" + p.a +
+                                 "', '" + p.b + "' is given twice");
+            }
+        }
+    }
 }
 
 void validateScene(const Scene& scene, const SceneSections& sections, Reporter& reporter) {
     scene.simulation.validate(*sections.single("simulation"), reporter);
-    scene.material.validate(*sections.single("material"), reporter);
+    const std::vector<const SettingsSection*> materialPlaces = materialSections(sections);
+    scene.material.validate(*materialPlaces[0], reporter);
+    for (std::size_t k = 0; k < scene.otherMaterials.size(); ++k) {
+        scene.otherMaterials[k].validate(*materialPlaces[k + 1], reporter);
+    }
     const auto& emitterSections = *sections.array("emitter");
     for (std::size_t i = 0; i < scene.emitters.size(); ++i) {
         scene.emitters[i].validate(emitterSections[i], reporter);
     }
+    checkMaterialNames(scene, sections);
     checkNeighbourReach(scene, sections);
     scene.surface.validate();
     scene.render.validate(*sections.single("render"));

@@ -22,7 +22,9 @@ class SettingsSection;
 
 struct Scene {
     SimulationSettings simulation;
-    MaterialSettings material;
+    MaterialSettings material;  ///< [material], or the first [[material]]
+    std::vector<MaterialSettings> otherMaterials;     ///< the [[material]] sections after it
+    std::vector<MaterialPairSettings> materialPairs;  ///< [[material_pair]]
     GroundSettings ground;
     OutputSettings output;
     std::vector<EmitterSettings> emitters;  ///< [[emitter]]; one helix when none is given
@@ -36,6 +38,8 @@ struct Scene {
     std::filesystem::path directory() const;  ///< relative paths resolve against it
 
     SimulationSetup simulationSetup() const;
+    /// Whether the materials are written as [[material]] sections (several, or named).
+    bool namedMaterials() const { return !otherMaterials.empty() || !material.name.empty(); }
     /// The colliders as the surface and render stages need them.
     ColliderScene colliderScene() const;
 };

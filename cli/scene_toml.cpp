@@ -446,6 +446,11 @@ std::string sceneKeysMarkdown() {
     SettingsSection keySection("collider.key");
     key.describe(keySection);
     table("[[collider.key]]", keySection, everyKey);
+    // Several materials: [[material]] sections take the keys of [material] above.
+    MaterialPairSettings pair;
+    SettingsSection pairSection("material_pair[0]");
+    pair.describe(pairSection);
+    table("[[material_pair]]", pairSection, everyKey);
     return out.str();
 }
 

@@ -24,7 +24,7 @@ const std::map<std::string, std::vector<std::string>>& typeKeys() {
     return keys;
 }
 
-const std::vector<std::string> kCommonKeys = {"type", "radius", "mass", "jitter"};
+const std::vector<std::string> kCommonKeys = {"type", "radius", "mass", "jitter", "material"};
 
 }  // namespace
 
@@ -40,6 +40,7 @@ void EmitterSettings::describe(SettingsSection& s) {
     s.choice("type", type, {"helix", "box", "spout", "points"}, "how globules are placed");
     s.integer("count", count, 0, kMaxEmitterGlobules, "number of globules (box: 0 fills the box)");
     s.number("radius", radius, NumberRange::positive(), "globule radius, world units");
+    s.text("material", material, "the [[material]] it emits, by name (empty: the first)");
     s.number("mass", mass, NumberRange::positive(), "mass per globule");
     s.vec3("velocity", velocity, NumberRange::any(), "initial velocity, units / s");
     s.number("jitter", jitter, NumberRange::nonNegative(), "random offset, world units");

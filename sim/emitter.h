@@ -25,6 +25,7 @@ struct EmitterSettings {
     std::string type = "helix";  ///< helix | box | spout | points
     int64_t count = 400;         ///< globules (box: 0 = fill the box; points: from the file)
     double radius = 1.0;         ///< globule radius, world units
+    std::string material;        ///< the [[material]] it emits ("": the first)
     double mass = 1.0;           ///< per globule
     Vec3 velocity{0, 0, 0};      ///< initial velocity, units / s (helix, box, points)
     double jitter = 0.05;        ///< random offset amplitude, world units (seeded)

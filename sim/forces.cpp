@@ -11,6 +11,7 @@
 #include <cstdint>
 
 #include "collider_contact.h"
+#include "errors.h"
 
 namespace globular {
 
@@ -158,6 +159,125 @@ void pairForcesSorting(Globules& g, const PairForce& pair, NeighborWorkspace& w,
                       });
 }
 
+namespace {
+
+/// One pair's sum over a batch: sumBatch for the pair's exponents.
+using SumBatch = void (*)(const PairForce&, const NeighborBatch&, float&, float&, float&);
+
+SumBatch batchKernelFor(const PairForce& pair) {
+    if (pair.integerExponents) {
+        const int m = pair.mInt, n = pair.nInt;
+        if (m == 5 && n == 3) return sumBatch<5, 3>;
+        if (m == 5 && n == 1) return sumBatch<5, 1>;
+        if (m == 5 && n == 4) return sumBatch<5, 4>;
+        if (m == 10 && n == 3) return sumBatch<10, 3>;
+        if (m == 7 && n == 5) return sumBatch<7, 5>;
+        if (m == 12 && n == 6) return sumBatch<12, 6>;
+    }
+    return sumBatch<0, 0>;
+}
+
+/// sumRange for several materials: a cell's candidates gathered once per material, and
+/// each member summed over each material's with that pair's constants and kernel, in
+/// material order (the same order on any thread count).
+void sumRangeMixed(const PairTable& pairs, const std::vector<SumBatch>& kernels,
+                   const NeighborGrid& grid, const Globules& s, bool uniformRadius,
+                   std::size_t begin, std::size_t end, Accelerations& forces) {
+    const GlobuleArrays arrays{s.px.data(), s.py.data(), s.pz.data(),    s.vx.data(),
+                               s.vy.data(), s.vz.data(), s.radius.data()};
+    const std::size_t kinds = pairs.materials();
+    const float groupReach = grid.cellSize() * 1.0001f;
+    std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> runs;
+    NeighborGrid::RunCursor cursor;
+    std::vector<GroupCandidates> candidates(kinds);
+    for (GroupCandidates& c : candidates) c.uniformRadius = uniformRadius;
+    NeighborBatch batch;
+    for (std::size_t first = begin; first < end;) {
+        const auto cell = grid.cellOf(s.px[first], s.py[first], s.pz[first]);
+        float lo[3] = {s.px[first], s.py[first], s.pz[first]};
+        float hi[3] = {lo[0], lo[1], lo[2]};
+        std::size_t last = first + 1;
+        for (; last < end && grid.cellOf(s.px[last], s.py[last], s.pz[last]) == cell; ++last) {
+            const float p[3] = {s.px[last], s.py[last], s.pz[last]};
+            for (int a = 0; a < 3; ++a) {
+                lo[a] = std::min(lo[a], p[a]);
+                hi[a] = std::max(hi[a], p[a]);
+            }
+        }
+        const int runCount =
+            grid.neighborRuns(s.px[first], s.py[first], s.pz[first], cursor, runs);
+        std::size_t total = 0;
+        for (int b = 0; b < runCount; ++b) total += runs[b].second - runs[b].first;
+        for (std::size_t kind = 0; kind < kinds; ++kind) {
+            GroupCandidates& c = candidates[kind];
+            c.reserve(total);
+            c.count = 0;
+            for (int b = 0; b < runCount; ++b) {
+                collectGroupCandidates(arrays, runs[b].first, runs[b].second, lo, hi,
+                                       groupReach, c, s.material.data(), uint8_t(kind));
+            }
+        }
+        batch.reserve(total);
+        for (std::size_t k = first; k < last; ++k) {
+            const std::size_t mine = s.material[k];
+            float fx = 0, fy = 0, fz = 0;
+            for (std::size_t kind = 0; kind < kinds; ++kind) {
+                if (candidates[kind].count == 0) continue;
+                const PairForce& pair = pairs(mine, kind);
+                const float reach = pair.cutoff(1.0f);
+                batch.count = 0;
+                collectNeighbors(candidates[kind], s.px[k], s.py[k], s.pz[k], s.vx[k], s.vy[k],
+                                 s.vz[k], s.radius[k], reach * reach, batch);
+                kernels[mine * kinds + kind](pair, batch, fx, fy, fz);
+            }
+            forces.x[k] = fx;
+            forces.y[k] = fy;
+            forces.z[k] = fz;
+        }
+        first = last;
+    }
+}
+
+}  // namespace
+
+void pairForcesSorting(Globules& g, const PairTable& pairs, NeighborWorkspace& w,
+                       Accelerations& forces) {
+    const std::size_t n = g.size();
+    forces.resize(n);
+    if (n == 0) return;
+    if (g.material.size() != n) throw Error("several materials, but globules without one");
+    const auto [smallest, largest] = radiusRange(g);
+    w.grid.build(g.px.data(), g.py.data(), g.pz.data(), n, pairs.cutoff(2.0f * largest));
+    g.permute(w.grid.sortedOrder(), forces.x);
+    std::vector<SumBatch> kernels;
+    for (std::size_t a = 0; a < pairs.materials(); ++a) {
+        for (std::size_t b = 0; b < pairs.materials(); ++b) kernels.push_back(batchKernelFor(pairs(a, b)));
+    }
+    const bool uniformRadius = smallest == largest;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          sumRangeMixed(pairs, kernels, w.grid, g, uniformRadius, r.begin(),
+                                        r.end(), forces);
+                      });
+}
+
+void pairForcesAllPairs(const Globules& g, const PairTable& pairs, Accelerations& forces) {
+    const std::size_t n = g.size();
+    forces.resize(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                              float f[3] = {0, 0, 0};
+                              for (std::size_t j = 0; j < n; ++j) {
+                                  if (j != i) addPair(g, pairs(g.materialOf(i), g.materialOf(j)), i, j, f);
+                              }
+                              forces.x[i] = f[0];
+                              forces.y[i] = f[1];
+                              forces.z[i] = f[2];
+                          }
+                      });
+}
+
 void pairForcesGrid(const Globules& g, const PairForce& pair, NeighborWorkspace& w,
                     Accelerations& forces) {
     Globules sorted = g;
@@ -298,10 +418,12 @@ void ForceField::addExternalForces(Globules& g, Accelerations& out) {
 }
 
 void ForceField::compute(Globules& g, Accelerations& out) {
+    const bool one = mPairs.materials() == 1;
     if (mAllPairs) {
-        pairForcesAllPairs(g, mPair, out);
+        one ? pairForcesAllPairs(g, mPairs(0, 0), out) : pairForcesAllPairs(g, mPairs, out);
     } else {
-        pairForcesSorting(g, mPair, mWorkspace, out);
+        one ? pairForcesSorting(g, mPairs(0, 0), mWorkspace, out)
+            : pairForcesSorting(g, mPairs, mWorkspace, out);
     }
     if (!mExternal.colliders.empty()) mLargestRadius = radiusRange(g).second;
     addExternalForces(g, out);

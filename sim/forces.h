@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "collider_set.h"
+#include "material_pairs.h"
 #include "globules.h"
 #include "neighbor_grid.h"
 #include "pair_force.h"
@@ -58,6 +59,15 @@ void pairForcesGrid(const Globules& globules, const PairForce& pair,
 std::pair<float, float> buildGrid(const Globules& globules, const PairForce& pair,
                                   NeighborGrid& grid);
 
+/// pairForcesSorting for several materials: each pair with its materials' constants from
+/// @p pairs (globules.material gives each globule's). A cell's candidates are split by
+/// material, so every pair still goes through the single-material kernels.
+void pairForcesSorting(Globules& globules, const PairTable& pairs, NeighborWorkspace& workspace,
+                       Accelerations& forces);
+
+/// The O(N^2) reference for several materials.
+void pairForcesAllPairs(const Globules& globules, const PairTable& pairs, Accelerations& forces);
+
 /// The ground's penalty force of eq. (9) on one globule, y component (normal +y).
 float groundForce(const GroundSettings& ground, float y, float vy, float radius);
 
@@ -65,13 +75,16 @@ float groundForce(const GroundSettings& ground, float y, float vy, float radius)
 class ForceField {
 public:
     ForceField(PairForce pair, ExternalForces external, bool allPairs = false)
-        : mPair(pair), mExternal(external), mAllPairs(allPairs) {}
+        : mPairs(pair), mExternal(std::move(external)), mAllPairs(allPairs) {}
+    /// Several materials: @p pairs gives each pair's constants.
+    ForceField(PairTable pairs, ExternalForces external, bool allPairs = false)
+        : mPairs(std::move(pairs)), mExternal(std::move(external)), mAllPairs(allPairs) {}
 
     /// Fills @p out for @p globules, which the grid method reorders first (see
     /// pairForcesSorting); @p out is in their new order.
     void compute(Globules& globules, Accelerations& out);
 
-    const PairForce& pair() const { return mPair; }
+    const PairTable& pairs() const { return mPairs; }
     /// The step about to be taken: colliders' static friction needs its length, and the
     /// colliders' clock starts at its time (the integrator moves it on, collider_set.h).
     void setStep(double time, double dt) {
@@ -95,7 +108,7 @@ private:
     void addGravityAndGround(const Globules& g, std::size_t i, Accelerations& out) const;
     void addExternalForces(Globules& g, Accelerations& out);
 
-    PairForce mPair;
+    PairTable mPairs;
     ExternalForces mExternal;
     bool mAllPairs;
     NeighborWorkspace mWorkspace;

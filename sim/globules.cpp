@@ -33,17 +33,19 @@ bool Globules::consistent() const {
     for (const auto* a : {&py, &pz, &vx, &vy, &vz, &radius, &mass}) {
         if (a->size() != n) return false;
     }
-    return id.size() == n;
+    return id.size() == n && (material.empty() || material.size() == n);
 }
 
 void Globules::reserve(std::size_t n) {
     for (auto* a : {&px, &py, &pz, &vx, &vy, &vz, &radius, &mass}) a->reserve(n);
     id.reserve(n);
+    if (!material.empty()) material.reserve(n);
 }
 
 void Globules::clear() {
     for (auto* a : {&px, &py, &pz, &vx, &vy, &vz, &radius, &mass}) a->clear();
     id.clear();
+    material.clear();
 }
 
 std::size_t Globules::add(Vec3 p, Vec3 v, float r, float m, int32_t globuleId) {
@@ -65,6 +67,10 @@ void Globules::permute(const std::vector<uint32_t>& order, std::vector<float>& s
     scratch.resize(id.size());
     forEachIndex(order.size(), [&](std::size_t k) { scratch[k] = std::bit_cast<float>(id[order[k]]); });
     forEachIndex(order.size(), [&](std::size_t k) { id[k] = std::bit_cast<int32_t>(scratch[k]); });
+    if (!material.empty()) {
+        std::vector<uint8_t> old(material);
+        forEachIndex(order.size(), [&](std::size_t k) { material[k] = old[order[k]]; });
+    }
 }
 
 void Globules::permute(const std::vector<uint32_t>& order) {

@@ -17,9 +17,13 @@ struct Globules {
     std::vector<float> radius;      ///< world units
     std::vector<float> mass;        ///< mass units (1 per globule by default)
     std::vector<int32_t> id;        ///< stable identity, unique, survives reordering
+    /// Index into the scene's materials; empty when the scene has one (no cost then).
+    std::vector<uint8_t> material;
 
     std::size_t size() const { return px.size(); }
-    /// Whether every array holds size() elements.
+    /// Material of globule @p i (0 when there is one material).
+    uint8_t materialOf(std::size_t i) const { return material.empty() ? 0 : material[i]; }
+    /// Whether every array holds size() elements (material: or none).
     bool consistent() const;
     bool empty() const { return px.empty(); }
 

@@ -9,6 +9,7 @@
 namespace globular {
 
 void MaterialSettings::describe(SettingsSection& s) {
+    s.text("name", name, "how emitters and [[material_pair]] name it (several materials)");
     s.choice("preset", preset, {"powder", "liquid", "solid", "custom"},
              "window constants of eq. (6)-(8); custom requires cr and cd");
     s.number("r0", r0, NumberRange::positive(), "rest distance, world units");

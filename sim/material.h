@@ -11,8 +11,9 @@ namespace globular {
 class SettingsSection;
 class Reporter;
 
-/// The `[material]` section of a scene.
+/// The `[material]` section of a scene, or one of its `[[material]]` sections.
 struct MaterialSettings {
+    std::string name;               ///< how emitters and [[material_pair]] name it
     std::string preset = "liquid";  ///< powder | liquid | solid | custom
     double r0 = 1.0;     ///< rest distance where repulsion and attraction cancel, world units
     double b1 = 2.0;     ///< strength of the radial force

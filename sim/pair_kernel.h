@@ -58,11 +58,27 @@ struct GroupCandidates {
     }
 };
 
+#if defined(__AVX512F__)
+/// The lanes among the first @p left (at most 16 used) whose material is @p want.
+inline __mmask16 materialMask(const uint8_t* material, uint32_t left, uint8_t want) {
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+    const __m512i m = _mm512_cvtepu8_epi32(_mm_maskz_loadu_epi8(firstLanes(left), material));
+    return _mm512_cmpeq_epi32_mask(m, _mm512_set1_epi32(want));
+#else
+    __mmask16 mask = 0;
+    for (uint32_t l = 0; l < 16 && l < left; ++l) mask |= __mmask16(material[l] == want) << l;
+    return mask;
+#endif
+}
+#endif
+
 /// Appends to @p out the globules j in [begin, end) of @p s within @p reach of the box
-/// [@p lo, @p hi]. @p out has room for them.
+/// [@p lo, @p hi]; with @p material, only those whose material[j] is @p want (several
+/// materials: one candidate list per material). @p out has room for them.
 inline void collectGroupCandidates(const GlobuleArrays& s, uint32_t begin, uint32_t end,
                                    const float lo[3], const float hi[3], float reach,
-                                   GroupCandidates& out) {
+                                   GroupCandidates& out, const uint8_t* material = nullptr,
+                                   uint8_t want = 0) {
     uint32_t count = out.count;
     const float reach2 = reach * reach;
 #if defined(__AVX512F__)
@@ -79,7 +95,8 @@ inline void collectGroupCandidates(const GlobuleArrays& s, uint32_t begin, uint3
         const __m512 z = _mm512_maskz_loadu_ps(live, s.z + j);
         const __m512 ex = outside(x, 0), ey = outside(y, 1), ez = outside(z, 2);
         const __m512 d2 = _mm512_fmadd_ps(ez, ez, _mm512_fmadd_ps(ey, ey, _mm512_mul_ps(ex, ex)));
-        const __mmask16 near = _mm512_mask_cmp_ps_mask(live, d2, reach2v, _CMP_LE_OQ);
+        __mmask16 near = _mm512_mask_cmp_ps_mask(live, d2, reach2v, _CMP_LE_OQ);
+        if (material) near &= materialMask(material + j, left, want);
         const auto keep = [&](std::vector<float>& to, __m512 v) {
             _mm512_storeu_ps(to.data() + count, _mm512_maskz_compress_ps(near, v));
         };
@@ -110,7 +127,7 @@ inline void collectGroupCandidates(const GlobuleArrays& s, uint32_t begin, uint3
         out.vy[count] = s.vy[j];
         out.vz[count] = s.vz[j];
         out.radius[count] = s.radius[j];
-        count += d2 <= reach2;
+        count += d2 <= reach2 && (!material || material[j] == want);
     }
 #endif
     out.count = count;

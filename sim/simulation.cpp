@@ -14,7 +14,8 @@ namespace globular {
 
 namespace {
 
-constexpr int kMaxSubstepRefinement = 64;  // on_explosion = substep: up to 64x more steps
+constexpr int kMaxSubstepRefinement = 64;
+constexpr std::size_t kMaxMaterials = 16;  // an index per globule in one byte, and a small table  // on_explosion = substep: up to 64x more steps
 std::string describeRunaway(const Globules& g, long i, double maxSpeed) {
     std::ostringstream out;
     const Vec3 p = g.position(std::size_t(i)), v = g.velocity(std::size_t(i));
@@ -31,15 +32,26 @@ std::string describeRunaway(const Globules& g, long i, double maxSpeed) {
 
 Simulation::Simulation(const SimulationSetup& setup)
     : mSetup(setup),
-      mForces(PairForce::fromMaterial(setup.material),
+      mForces(PairTable(setup.materials(), setup.materialPairs),
               ExternalForces{setup.simulation.gravity, setup.ground,
                              ColliderSet(setup.colliders, setup.sceneDir, Simulation::colliderReach(setup),
                                          setup.simulation.gravity, setup.ground)},
               setup.simulation.neighbors == "all_pairs"),
       mIntegrator(makeIntegrator(setup.simulation.integrator)) {
+    const std::vector<MaterialSettings> materials = setup.materials();
+    if (materials.size() > kMaxMaterials) {
+        throw SceneError("a scene has at most " + std::to_string(kMaxMaterials) +
+                         " materials, this one " + std::to_string(materials.size()));
+    }
     for (std::size_t k = 0; k < setup.emitters.size(); ++k) {
         mEmitters.push_back(
             makeEmitter(setup.emitters[k], uint64_t(setup.simulation.seed), k, setup.sceneDir));
+        const int material = materialIndex(materials, setup.emitters[k].material);
+        if (material < 0) {
+            throw SceneError("[[emitter]] " + std::to_string(k) + " names material '" +
+                             setup.emitters[k].material + "', which no [[material]] has");
+        }
+        if (materials.size() > 1) mEmitterMaterials.push_back(uint8_t(material));
     }
     std::size_t planned = plannedCount();
     if (planned > std::size_t(INT32_MAX)) throw ResourceError("more than 2^31 globules requested");
@@ -54,7 +66,7 @@ double Simulation::colliderReach(const SimulationSetup& setup) {
     // The force loop skips a collider for a whole neighbour-grid cell (one interaction
     // cutoff wide) when its distance at the cell's centre exceeds sqrt(3) times the
     // cell's half-diagonal (forces.cpp): the field must tell that far.
-    const double cell = PairForce::fromMaterial(setup.material).cutoff(float(2 * largest));
+    const double cell = PairTable(setup.materials(), setup.materialPairs).cutoff(float(2 * largest));
     return 2 * largest + 1.5 * cell + 1;
 }
 
@@ -67,9 +79,16 @@ std::size_t Simulation::plannedCount(const SimulationSetup& setup) {
     return total;
 }
 
+std::vector<MaterialSettings> SimulationSetup::materials() const {
+    std::vector<MaterialSettings> all{material};
+    all.insert(all.end(), otherMaterials.begin(), otherMaterials.end());
+    return all;
+}
+
 void Simulation::emitFrom(std::size_t k, double time) {
     const std::size_t before = mGlobules.size();
     mEmitters[k]->emit(time, mGlobules, mNextId);
+    if (!mEmitterMaterials.empty()) mGlobules.material.resize(mGlobules.size(), mEmitterMaterials[k]);
     const Globules& g = mGlobules;
     for (std::size_t i = before; i < g.size(); ++i) {
         if (!std::isfinite(g.px[i] + g.py[i] + g.pz[i]) ||
@@ -179,6 +198,16 @@ void Simulation::restoreState(const SimulationState& state) {
     if (state.bodies.size() != bodies.size()) {
         throw Error("saved state has " + std::to_string(state.bodies.size()) +
                     " dynamic colliders, the scene " + std::to_string(bodies.size()));
+    }
+    const std::size_t materials = mForces.pairs().materials();
+    const Globules& g = state.globules;
+    const bool fits = materials == 1 ? g.material.empty()
+                                     : g.material.size() == g.size() &&
+                                           std::all_of(g.material.begin(), g.material.end(),
+                                                       [&](uint8_t m) { return m < materials; });
+    if (!fits) {
+        throw Error("saved state's globule materials do not fit the scene's " +
+                    std::to_string(materials) + " material(s)");
     }
     for (std::size_t b = 0; b < bodies.size(); ++b) bodies[b].state = state.bodies[b];
     mGlobules = state.globules;

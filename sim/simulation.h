@@ -14,6 +14,7 @@
 #include "globules.h"
 #include "integrator.h"
 #include "material.h"
+#include "material_pairs.h"
 #include "simulation_settings.h"
 
 namespace globular {
@@ -23,11 +24,16 @@ class Reporter;
 /// Everything a simulation needs from a scene.
 struct SimulationSetup {
     SimulationSettings simulation;
-    MaterialSettings material;
+    MaterialSettings material;  ///< the first (or only) material
     GroundSettings ground;
     std::vector<EmitterSettings> emitters;
     std::filesystem::path sceneDir;  ///< relative emitter paths resolve against it
     std::vector<ColliderSettings> colliders;  ///< [[collider]]
+    std::vector<MaterialSettings> otherMaterials;  ///< [[material]] sections after the first
+    std::vector<MaterialPairSettings> materialPairs;  ///< [[material_pair]]
+
+    /// material, then otherMaterials: globule material k is materials()[k].
+    std::vector<MaterialSettings> materials() const;
 };
 
 /// Everything that determines the future of a run: saving and restoring it reproduces
@@ -89,6 +95,7 @@ private:
     ForceField mForces;
     std::unique_ptr<Integrator> mIntegrator;
     std::vector<std::unique_ptr<Emitter>> mEmitters;
+    std::vector<uint8_t> mEmitterMaterials;  ///< per emitter; empty with one material
     int32_t mNextId = 0;
     double mTime = 0;
     int64_t mSteps = 0;

@@ -12,7 +12,7 @@ namespace globular {
 
 namespace {
 
-// Version 3 adds the dynamic colliders; version 2 ended with a checksum of everything
+// Version 3 adds the dynamic colliders and the globules' materials; version 2 ended with a checksum of everything
 // before it, as 3 does; version 1 had none.
 constexpr char kMagic[8] = {'G', 'L', 'B', 'S', 'T', 'A', 'T', '3'};
 constexpr char kOldMagics[2][8] = {{'G', 'L', 'B', 'S', 'T', 'A', 'T', '1'},
@@ -111,6 +111,7 @@ void writeCheckpoint(const std::filesystem::path& path, const Checkpoint& c) {
         w.array(*a);
     }
     w.array(g.id);
+    w.array(g.material);
     w.array(s.carried.x);
     w.array(s.carried.y);
     w.array(s.carried.z);
@@ -215,6 +216,7 @@ Checkpoint readCheckpoint(const std::filesystem::path& path) {
         *a = r.array<float>();
     }
     g.id = r.array<int32_t>();
+    g.material = r.array<uint8_t>();
     s.carried.x = r.array<float>();
     s.carried.y = r.array<float>();
     s.carried.z = r.array<float>();
@@ -233,7 +235,10 @@ Checkpoint readCheckpoint(const std::filesystem::path& path) {
     for (const auto* a : {&g.py, &g.pz, &g.vx, &g.vy, &g.vz, &g.radius, &g.mass}) {
         if (a->size() != g.px.size()) r.fail("arrays of different lengths");
     }
-    if (g.id.size() != g.px.size() || !r.atEnd()) r.fail("inconsistent sizes");
+    if (g.id.size() != g.px.size() || !r.atEnd() ||
+        (!g.material.empty() && g.material.size() != g.px.size())) {
+        r.fail("inconsistent sizes");
+    }
     validate(c, r);
     return c;
 }

@@ -72,8 +72,8 @@ TEST(SceneErrors, UnknownKeySuggestsClosest) {
               "scene.toml:3:7: [simulation] key 'fsp': unknown key (did you mean 'fps'?)");
 }
 
-TEST(SceneErrors, MaterialWrittenAsArrayOfTables) {
-    const std::string message = parseError("[[material]]\nb1 = 2\n");
+TEST(SceneErrors, MaterialWrittenAsAValue) {
+    const std::string message = parseError("material = 3\n");
     EXPECT_TRUE(message.starts_with("scene.toml:")) << message;
     EXPECT_TRUE(contains(message, "'material' must be a section: [material]")) << message;
 }
@@ -460,7 +460,7 @@ TEST(SceneResolved, ContainsEveryKeyThatApplies) {
             << section.name();
     }
     using Keys = std::set<std::string>;
-    const Keys common = {"type", "radius", "mass", "jitter"};
+    const Keys common = {"type", "radius", "mass", "jitter", "material"};
     auto with = [&](Keys extra) {
         extra.insert(common.begin(), common.end());
         return extra;
