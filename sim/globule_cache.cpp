@@ -108,9 +108,13 @@ vdbp::PointDataGrid::Ptr buildGrid(const fs::path& path, const Globules& g, cons
     vdbp::appendAttribute<openvdb::Vec3f>(tree, "v");
     vdbp::appendAttribute<float>(tree, "pscale", 1.0f);
     vdbp::appendAttribute<int32_t>(tree, "id");
+    vdbp::appendAttribute<int32_t>(tree, "material");
     vdbp::populateAttribute(tree, indexTree, "v", VelocityList{g});
     vdbp::populateAttribute(tree, indexTree, "pscale", ArrayList<float>{g.radius});
     vdbp::populateAttribute(tree, indexTree, "id", ArrayList<int32_t>{g.id});
+    std::vector<int32_t> materials(g.size());
+    for (std::size_t i = 0; i < g.size(); ++i) materials[i] = g.materialOf(i);
+    vdbp::populateAttribute(tree, indexTree, "material", ArrayList<int32_t>{materials});
 
     grid->setName(kGridName);
     grid->setCreator("globular");
@@ -172,6 +176,12 @@ void readLeaf(const Leaf& leaf, const openvdb::math::Transform& xform, std::size
         forEachValue<int32_t, int64_t>(
             leaf, i, "id", [&](std::size_t k, auto id) { out.id[start + k] = int32_t(id); });
     }
+    if (std::size_t i = descriptor.find("material"); i != vdbp::AttributeSet::INVALID_POS) {
+        forEachValue<int32_t, int64_t>(leaf, i, "material", [&](std::size_t k, auto m) {
+            if (m < 0 || m > 255) throw std::runtime_error("a material index is out of range");
+            out.material[start + k] = uint8_t(m);
+        });
+    }
 }
 
 /// @brief Globules of a point grid, ordered by id so that a cache reads back in the
@@ -192,6 +202,7 @@ Globules globulesOf(const vdbp::PointDataGrid& grid) {
     out.mass.assign(n, 1.0f);
     out.id.resize(n);
     std::iota(out.id.begin(), out.id.end(), 0);
+    out.material.assign(n, 0);
 
     for (std::size_t l = 0; l < leaves.leafCount(); ++l) {
         readLeaf(leaves.leaf(l), grid.transform(), start[l], out);
@@ -228,6 +239,7 @@ std::string packGlobules(const Globules& g, const CacheInfo& info) {
         p.array(*a);
     }
     p.array(g.id);
+    p.array(g.material);
     return std::move(p.bytes);
 }
 
@@ -245,7 +257,7 @@ Globules unpackGlobules(const std::string& bytes, CacheInfo& info) {
     take(&frame, sizeof frame);
     take(&info.time, sizeof info.time);
     info.frame = frame;
-    const uint64_t perGlobule = 8 * sizeof(float) + sizeof(int32_t);
+    const uint64_t perGlobule = 8 * sizeof(float) + sizeof(int32_t) + sizeof(uint8_t);
     if (n > (bytes.size() - pos) / perGlobule || n * perGlobule != bytes.size() - pos) {
         throw std::runtime_error("answer of the wrong size from the reader");
     }
@@ -256,6 +268,8 @@ Globules unpackGlobules(const std::string& bytes, CacheInfo& info) {
     }
     g.id.resize(n);
     take(g.id.data(), n * sizeof(int32_t));
+    g.material.resize(n);
+    take(g.material.data(), n * sizeof(uint8_t));
     return g;
 }
 

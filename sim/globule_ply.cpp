@@ -126,8 +126,9 @@ void writeGlobulePly(const fs::path& path, const Globules& globules) {
         vertex.properties.push_back({name, PlyType::Float32});
     }
     vertex.properties.push_back({"id", PlyType::Int32});
+    vertex.properties.push_back({"material", PlyType::Int32});
     const std::string header = plyHeader("globular globule cache", {vertex});
-    constexpr std::size_t kRowSize = 7 * sizeof(float) + sizeof(int32_t);
+    constexpr std::size_t kRowSize = 7 * sizeof(float) + 2 * sizeof(int32_t);
     constexpr std::size_t kChunk = 1 << 14;  // rows per write
     writeAtomically(path, [&](const fs::path& temporary) {
         std::ofstream out(temporary, std::ios::binary);
@@ -141,7 +142,9 @@ void writeGlobulePly(const fs::path& path, const Globules& globules) {
                 const float row[7] = {g.px[i], g.py[i], g.pz[i],    g.vx[i],
                                       g.vy[i], g.vz[i], g.radius[i]};
                 std::memcpy(p, row, sizeof row);
+                const int32_t material = g.materialOf(i);
                 std::memcpy(p + sizeof row, &g.id[i], sizeof(int32_t));
+                std::memcpy(p + sizeof row + sizeof(int32_t), &material, sizeof(int32_t));
             }
             out.write(buffer.data(), p - buffer.data());
         }

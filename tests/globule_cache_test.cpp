@@ -103,6 +103,22 @@ TEST_F(GlobuleCacheTest, VdbRoundTripKeepsEveryAttribute) {
     EXPECT_EQ(std::distance(fs::directory_iterator(mDir), {}), 1);  // no temporary left
 }
 
+TEST_F(GlobuleCacheTest, MaterialsTravelInTheVdbAndPlyCaches) {
+    Globules g = randomGlobules(300, 5);
+    for (std::size_t i = 0; i < g.size(); ++i) g.material.push_back(uint8_t(g.id[i] % 3));
+    writeGlobuleVdb(mDir / "mixed.vdb", g, {1, 0.0});
+    const Globules back = readGlobuleVdb(mDir / "mixed.vdb");
+    ASSERT_EQ(back.material.size(), g.size());
+    for (std::size_t i = 0; i < back.size(); ++i) EXPECT_EQ(back.material[i], back.id[i] % 3);
+    writeGlobulePly(mDir / "mixed.ply", g);
+    const std::string ply = readBytes(mDir / "mixed.ply");
+    EXPECT_NE(ply.find("property int id\nproperty int material\n"), std::string::npos);
+    // One material: every globule's is 0.
+    writeGlobuleVdb(mDir / "single.vdb", randomGlobules(50, 6), {1, 0.0});
+    const Globules single = readGlobuleVdb(mDir / "single.vdb");
+    for (std::size_t i = 0; i < single.size(); ++i) EXPECT_EQ(single.materialOf(i), 0);
+}
+
 TEST_F(GlobuleCacheTest, VdbIsReadableWithPlainOpenVdb) {
     const Globules g = randomGlobules(500, 7);
     const fs::path path = mDir / "plain.vdb";
@@ -230,7 +246,8 @@ TEST_F(GlobuleCacheTest, PlyRoundTripIsExact) {
     const Globules back = readGlobulePly(path);
     expectSameGlobules(g, back, 0.0f);
     EXPECT_EQ(back.id, g.id);  // file order is kept
-    EXPECT_EQ(fs::file_size(path), readBytes(path).find("end_header\n") + 11 + 1000 * 32);
+    // x y z vx vy vz radius (float), id and material (int32): 36 bytes a row.
+    EXPECT_EQ(fs::file_size(path), readBytes(path).find("end_header\n") + 11 + 1000 * 36);
 
     writeGlobulePly(mDir / "empty.ply", Globules{});
     EXPECT_TRUE(readGlobulePly(mDir / "empty.ply").empty());
