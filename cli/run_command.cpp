@@ -116,10 +116,19 @@ void runScene(const RunOptions& options, Reporter& reporter) {
     if (wants(options.stages, "render")) {
         reporter.info("render: frames " + std::to_string(range.first) + "-" +
                       std::to_string(range.last));
-        const RenderJob job{scene.render,         scene.camera,
-                            scene.lights,         scene.ground.enabled ? scene.ground.height : 0,
-                            scene.surface.meshFormat, scene.simulation.fps,
-                            scene.colliderScene()};
+        std::vector<Vec3> materialColors;
+        const std::vector<MaterialSettings> materials = scene.simulationSetup().materials();
+        for (std::size_t k = 0; k < materials.size(); ++k) {
+            materialColors.push_back(materialColor(materials[k], k));
+        }
+        const RenderJob job{scene.render,
+                            scene.camera,
+                            scene.lights,
+                            scene.ground.enabled ? scene.ground.height : 0,
+                            scene.surface.meshFormat,
+                            scene.simulation.fps,
+                            scene.colliderScene(),
+                            materialColors};
         runRenderStage(job, ctx);
     }
     const double seconds =

@@ -49,6 +49,7 @@ void applyFrameUniforms(const gl::Program& p, const FrameUniforms& f) {
     glUniform1f(p.uniform("uShadowBias"), f.shadowBias);
     glUniform1i(p.uniform("uColorMode"), f.colorMode);
     setVec3(p, "uBaseColor", f.baseColor);
+    setVec3Array(p, "uPalette", f.palette);
     setVec3Array(p, "uRamp", {rampStops().begin(), rampStops().end()});
     glUniform2f(p.uniform("uRampRange"), f.rampMin, f.rampMax);
 }

@@ -27,10 +27,10 @@ void checkRender(const RenderSettings& s, const KeyName& name) {
         throw SceneError(name("samples") + " = " + std::to_string(n) +
                          ": must be 1, 2, 4, 8 or 16");
     }
-    if (s.colorBy == "speed" && s.mode == "surface") {
-        throw SceneError(name("color_by") +
-                         " = \"speed\": needs mode = \"spheres\" (a surface mesh has no "
-                         "velocities); use \"height\" or \"constant\"");
+    if ((s.colorBy == "speed" || s.colorBy == "material") && s.mode == "surface") {
+        throw SceneError(name("color_by") + " = \"" + s.colorBy +
+                         "\": needs mode = \"spheres\" (the surface mesh carries neither "
+                         "velocities nor materials); use \"height\" or \"constant\"");
     }
     if (s.rampMax < s.rampMin) {
         throw SceneError(name("ramp_max") + " = " + std::to_string(s.rampMax) +
@@ -61,8 +61,9 @@ void RenderSettings::describe(SettingsSection& s) {
              "spheres: each globule a shaded sphere of its radius; surface: the surfacing "
              "stage's mesh");
     s.integer("samples", samples, 1, 16, "multisample anti-aliasing samples per pixel (1 = off)");
-    s.choice("color_by", colorBy, {"constant", "speed", "height"},
-             "colour by the constant color, or by speed or height through a colour ramp");
+    s.choice("color_by", colorBy, {"constant", "speed", "height", "material"},
+             "colour by the constant color, by speed or height through a colour ramp, or "
+             "by each globule's [[material]] color");
     s.vec3("color", color, kUnit, "base colour, sRGB in [0, 1]");
     s.number("ramp_min", rampMin, NumberRange::any(),
              "speed (units/s) or height (units) mapped to the ramp's start");

@@ -18,7 +18,7 @@ struct RenderSettings {
     int64_t height = 720;                ///< pixels
     std::string mode = "spheres";        ///< spheres | surface
     int64_t samples = 4;                 ///< multisample anti-aliasing samples per pixel, 1 = off
-    std::string colorBy = "constant";    ///< constant | speed | height
+    std::string colorBy = "constant";    ///< constant | speed | height | material
     Vec3 color{0.16, 0.42, 0.82};        ///< base colour (sRGB), used by color_by = constant
     double rampMin = 0;                  ///< speed (units/s) or height (units) at the ramp's start
     double rampMax = 0;                  ///< ... and end; rampMin == rampMax: the animation's range

@@ -102,6 +102,7 @@ FrameSetup frameSetup(const RenderJob& job, const SceneExtent& extent) {
     setup.render = job.render;
     setup.lights = job.lights.empty() ? std::vector<LightSettings>{LightSettings{}} : job.lights;
     setup.groundHeight = job.groundHeight;
+    setup.materialColors = job.materialColors;
     const double aspect = double(job.render.width) / double(job.render.height);
     if (job.camera.automatic()) {
         setup.camera = autoFrame(extent, job.groundHeight, job.camera.fov, aspect);

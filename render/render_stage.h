@@ -19,6 +19,7 @@ struct RenderJob {
     std::string meshFormat = "ply";     ///< [surface] mesh_format, for mode = surface
     double fps = 25;                    ///< [simulation] fps: the movie's rate by default
     ColliderScene colliders;  ///< [[collider]]: drawn at each frame's pose (collider_poses.h)
+    std::vector<Vec3> materialColors;  ///< sRGB by material index, for color_by = material
 };
 
 /// Renders frames ctx.firstFrame..ctx.lastFrame of ctx.outDir:

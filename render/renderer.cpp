@@ -170,8 +170,12 @@ struct Renderer::Impl {
             f.shadowBias = float(0.5 * f.shadowTexel / (reach - 0.5 * radius));
         }
         const std::string& by = s.render.colorBy;
-        f.colorMode = by == "speed" ? 1 : by == "height" ? 2 : 0;
+        f.colorMode = by == "speed" ? 1 : by == "height" ? 2 : by == "material" ? 3 : 0;
         f.baseColor = srgbToLinear(s.render.color);
+        for (std::size_t k = 0; k < f.palette.size(); ++k) {
+            f.palette[k] = k < s.materialColors.size() ? srgbToLinear(s.materialColors[k])
+                                                       : f.baseColor;
+        }
         f.rampMin = float(s.ramp.min);
         f.rampMax = float(s.ramp.max);
         return f;
@@ -267,8 +271,8 @@ Image Renderer::drawSpheres(const Globules& globules, const FrameSetup& setup) {
         detail::SpherePass& pass;
         const detail::FrameTarget& target;
         const Globules& globules;
-        bool withSpeed;
-        void prepare(const FrameUniforms& f) { pass.upload(globules, withSpeed, f); }
+        detail::SpherePass::Value value;
+        void prepare(const FrameUniforms& f) { pass.upload(globules, value, f); }
         void shadow(const FrameUniforms& f) { pass.drawShadow(f); }
         void draw(const FrameUniforms& f) {
             pass.drawVisibility(f, target);
@@ -276,7 +280,10 @@ Image Renderer::drawSpheres(const Globules& globules, const FrameSetup& setup) {
         }
     };
     return im.draw(s, own.box,
-                   Content{*im.spheres, im.target, globules, s.render.colorBy == "speed"});
+                   Content{*im.spheres, im.target, globules,
+                           s.render.colorBy == "speed"      ? detail::SpherePass::Value::Speed
+                           : s.render.colorBy == "material" ? detail::SpherePass::Value::Material
+                                                            : detail::SpherePass::Value::None});
 }
 
 Image Renderer::drawMesh(const MeshView& mesh, const FrameSetup& setup) {

@@ -39,6 +39,8 @@ struct FrameSetup {
     ValueRange ramp;
     /// The set around the content (colliders), drawn in a neutral grey.
     std::vector<Prop> props;
+    /// sRGB colour of each material, by index (color_by = material; at most 16).
+    std::vector<Vec3> materialColors;
 };
 
 class Renderer {

@@ -8,7 +8,8 @@ const char* const kVersion = "#version 420 core\n#define MAX_LIGHTS 8\n";
 
 // Maps a per-globule or per-vertex value to a base colour (linear light).
 const char* const kColorLibrary = R"(
-uniform int uColorMode;     // 0 constant, 1 by value (speed), 2 by height
+uniform int uColorMode;     // 0 constant, 1 by value (speed), 2 by height, 3 by material
+uniform vec3 uPalette[16];  // linear, by material (value = the material's index)
 uniform vec3 uBaseColor;    // linear
 uniform vec3 uRamp[11];     // sRGB stops, evenly spaced
 uniform vec2 uRampRange;    // value at the ramp's start and end
@@ -19,6 +20,7 @@ vec3 srgbToLinear(vec3 c) {
 
 vec3 albedoFor(float value) {
     if (uColorMode == 0) return uBaseColor;
+    if (uColorMode == 3) return uPalette[clamp(int(value + 0.5), 0, 15)];
     float span = max(uRampRange.y - uRampRange.x, 1e-20);
     float t = clamp((value - uRampRange.x) / span, 0.0, 1.0) * 10.0;
     int i = min(int(t), 9);

@@ -104,7 +104,8 @@ SpherePass::SpherePass(int samples)
     gl::checkErrors("setting up the sphere passes");
 }
 
-void SpherePass::upload(const Globules& g, bool withSpeed, const FrameUniforms& f) {
+void SpherePass::upload(const Globules& g, Value value, const FrameUniforms& f) {
+    const bool withSpeed = value == Value::Speed;
     const std::size_t n = g.size();
     if (g.py.size() != n || g.pz.size() != n || g.radius.size() != n ||
         (withSpeed && (g.vx.size() != n || g.vy.size() != n || g.vz.size() != n))) {
@@ -115,10 +116,11 @@ void SpherePass::upload(const Globules& g, bool withSpeed, const FrameUniforms& 
     uploadFloats(mArrays[kY], g.py.data(), n);
     uploadFloats(mArrays[kZ], g.pz.data(), n);
     uploadFloats(mArrays[kRadius], g.radius.data(), n);
-    std::vector<float> speed(withSpeed ? n : 1, 0.0f);
+    std::vector<float> speed(value != Value::None ? n : 1, 0.0f);
     for (std::size_t i = 0; withSpeed && i < n; ++i) {
         speed[i] = std::sqrt(g.vx[i] * g.vx[i] + g.vy[i] * g.vy[i] + g.vz[i] * g.vz[i]);
     }
+    for (std::size_t i = 0; value == Value::Material && i < n; ++i) speed[i] = g.materialOf(i);
     uploadFloats(mArrays[kSpeed], speed.data(), speed.size());
     for (int i = kX; i <= kSpeed; ++i) {
         glBindTexture(GL_TEXTURE_BUFFER, mTextures[i].id());

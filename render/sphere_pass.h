@@ -34,7 +34,9 @@ class SpherePass {
     explicit SpherePass(int samples);
     /// Uploads positions, radii and (when @p withSpeed) speeds, and picks the spheres too
     /// big for a sprite in @p frame's camera or light view.
-    void upload(const Globules& globules, bool withSpeed, const FrameUniforms& frame);
+    /// The value each sphere carries to the shader (its colour by color_by).
+    enum class Value { None, Speed, Material };
+    void upload(const Globules& globules, Value value, const FrameUniforms& frame);
     void drawShadow(const FrameUniforms& frame) const;
     void drawVisibility(const FrameUniforms& frame, const FrameTarget& target) const;
     void drawShading(const FrameUniforms& frame, const FrameTarget& target) const;

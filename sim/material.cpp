@@ -21,6 +21,18 @@ void MaterialSettings::describe(SettingsSection& s) {
              "radial window C_r as a number (0 = from preset)");
     s.number("cd", cd, NumberRange::nonNegative(),
              "drag window C_d as a number (0 = from preset)");
+    s.vec3("color", color, NumberRange::between(0, 1),
+           "sRGB colour for [render] color_by = \"material\"; [0, 0, 0]: one of a palette "
+           "by the material's place");
+}
+
+Vec3 materialColor(const MaterialSettings& material, std::size_t index) {
+    if (!(material.color == Vec3{0, 0, 0})) return material.color;
+    // The render default's blue first, then colours far from it and from each other.
+    static const Vec3 kPalette[] = {{0.16, 0.42, 0.82}, {0.90, 0.45, 0.10}, {0.95, 0.80, 0.20},
+                                    {0.25, 0.65, 0.30}, {0.80, 0.15, 0.15}, {0.55, 0.35, 0.75},
+                                    {0.20, 0.75, 0.80}, {0.90, 0.55, 0.70}};
+    return kPalette[index % (sizeof kPalette / sizeof kPalette[0])];
 }
 
 double MaterialSettings::resolvedCr() const {

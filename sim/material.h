@@ -6,6 +6,8 @@
 
 #include <string>
 
+#include "vec3.h"
+
 namespace globular {
 
 class SettingsSection;
@@ -24,6 +26,9 @@ struct MaterialSettings {
     /// (powder C_r = C_d = r0; liquid C_r = r0, C_d = alpha r0; solid C_r = C_d = 2 r0).
     double cr = 0.0;
     double cd = 0.0;
+    /// sRGB colour for [render] color_by = "material"; (0, 0, 0): a distinct colour by
+    /// the material's place in the scene (materialColor).
+    Vec3 color{0, 0, 0};
 
     void describe(SettingsSection& section);
     /// Throws SceneError naming the key for values that leave the model undefined;
@@ -33,5 +38,8 @@ struct MaterialSettings {
     double resolvedCr() const;  ///< C_r after the preset is applied
     double resolvedCd() const;  ///< C_d after the preset is applied
 };
+
+/// The colour of material number @p index: its own, or a distinct one from a palette.
+Vec3 materialColor(const MaterialSettings& material, std::size_t index);
 
 }  // namespace globular

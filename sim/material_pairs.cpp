@@ -60,7 +60,7 @@ PairTable::PairTable(const std::vector<MaterialSettings>& materials,
         if (given[std::size_t(a) * mCount + std::size_t(b)]) {
             throw SceneError("[[material_pair]] '" + p.a + "', '" + p.b + "' is given twice");
         }
-        for (const auto [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
+        for (const auto& [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
             given[std::size_t(x) * mCount + std::size_t(y)] = true;
             MaterialSettings& m = constants[std::size_t(x) * mCount + std::size_t(y)];
             if (p.b1 > 0) m.b1 = p.b1;

@@ -77,6 +77,22 @@ TEST(GlContext, IsAnOpenGlCoreProfile) {
     EXPECT_NE(description.find("Core Profile"), std::string::npos) << description;
 }
 
+TEST(Renderer, ColorByMaterialGivesEachMaterialItsColour) {
+    Renderer renderer(kWidth, kHeight, 1);
+    FrameSetup setup = flatSetup();
+    setup.render.colorBy = "material";
+    setup.materialColors = {{0.8, 0.3, 0.2}, {0.2, 0.6, 0.8}};  // sRGB bytes 51, 153, 204
+    Globules g;
+    g.add({-3, 0, 0}, {}, 1, 1, 0);
+    g.add({3, 0, 0}, {}, 1, 1, 1);
+    g.material = {0, 1};
+    const Image image = renderer.drawSpheres(g, setup);
+    const int offset = int(std::lround(0.3 * kHeight / 2));  // x = +-3 at distance 10
+    // Seen off-axis, the point under the projected centre is lit a little obliquely.
+    expectColor(image, kWidth / 2 - offset, kHeight / 2, kBase, 8);
+    expectColor(image, kWidth / 2 + offset, kHeight / 2, {51, 153, 204}, 8);
+}
+
 TEST(Renderer, OneSphereIsADiscOfItsColourAtItsProjectedPlace) {
     Renderer renderer(kWidth, kHeight, 4);
     const FrameSetup setup = flatSetup();
