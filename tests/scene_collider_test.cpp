@@ -210,3 +210,58 @@ TEST(SceneColliders, DynamicCollidersResolveWithTheirBodyKeys) {
 
 }  // namespace
 }  // namespace globular
+
+namespace globular {
+namespace {
+
+// Several materials (issue 14): [[material]] and [[material_pair]] sections.
+
+TEST(SceneMaterials, SeveralMaterialsAreReadNamedAndResolved) {
+    const std::string text =
+        "[[material]]\nname = \"ketchup\"\npreset = \"liquid\"\ncolor = [0.7, 0.1, 0.05]\n"
+        "[[material]]\nname = \"mustard\"\npreset = \"solid\"\nb1 = 1.0\n"
+        "[[material_pair]]\na = \"ketchup\"\nb = \"mustard\"\nb1 = 0.5\n"
+        "[[emitter]]\nmaterial = \"mustard\"\n[[emitter]]\n";
+    const Scene scene = parse(text);
+    EXPECT_EQ(scene.material.name, "ketchup");
+    ASSERT_EQ(scene.otherMaterials.size(), 1u);
+    EXPECT_EQ(scene.otherMaterials[0].preset, "solid");
+    EXPECT_EQ(scene.materialPairs.at(0).b1, 0.5);
+    const SimulationSetup setup = scene.simulationSetup();
+    EXPECT_EQ(setup.materials().size(), 2u);
+    EXPECT_EQ(setup.emitters[0].material, "mustard");
+    const std::string resolved = resolvedSceneToml(scene);
+    EXPECT_NE(resolved.find("[[material]]\nname = \"mustard\""), std::string::npos) << resolved;
+    EXPECT_EQ(resolved.find("\n[material]\n"), std::string::npos) << resolved;
+    EXPECT_EQ(resolvedSceneToml(parse(resolved)), resolved);
+    // One unnamed [material] stays as it was.
+    EXPECT_NE(resolvedSceneToml(parse("[material]\nb1 = 3\n")).find("\n[material]\n"),
+              std::string::npos);
+}
+
+TEST(SceneMaterials, BadMaterialNamesNameFileLineAndKey) {
+    const std::string two = "[[material]]\nname = \"a\"\n[[material]]\nname = \"b\"\n";
+    EXPECT_EQ(parseError(two + "[[emitter]]\nmaterial = \"honey\"\n"),
+              "glass.toml:6:12: [emitter[0]] key 'material' = \"honey\": no [[material]] has "
+              "this name (there are: a, b)");
+    EXPECT_EQ(parseError("[[material]]\nname = \"a\"\n[[material]]\npreset = \"solid\"\n"),
+              "glass.toml: [material[1]] key 'name': with several [[material]] sections each "
+              "needs a name");
+    EXPECT_EQ(parseError("[[material]]\nname = \"a\"\n[[material]]\nname = \"a\"\n"),
+              "glass.toml:4:8: [material[1]] key 'name' = \"a\": another [[material]] has this "
+              "name");
+    EXPECT_EQ(parseError(two + "[[material_pair]]\na = \"a\"\nb = \"c\"\n"),
+              "glass.toml:7:5: [material_pair[0]] key 'b' = \"c\": no [[material]] has this "
+              "name (there are: a, b)");
+    EXPECT_EQ(parseError(two + "[[material_pair]]\na = \"a\"\nb = \"a\"\n"),
+              "glass.toml:7:5: [material_pair[0]] key 'b': a pair names two different "
+              "materials");
+    EXPECT_EQ(parseError(two + "[[material_pair]]\na = \"a\"\nb = \"b\"\n"
+                               "[[material_pair]]\na = \"b\"\nb = \"a\"\n"),
+              "glass.toml:9:5: [material_pair[1]] key 'a': the pair 'b', 'a' is given twice");
+    EXPECT_EQ(parseError(two + "[[material_pair]]\na = \"a\"\nb = \"b\"\ncr = -1\n"),
+              "glass.toml:8:6: [material_pair[0]] key 'cr' = -1: must be >= 0");
+}
+
+}  // namespace
+}  // namespace globular
