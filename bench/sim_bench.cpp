@@ -42,6 +42,25 @@ void BM_SimulationStepMeshCollider(benchmark::State& state) {
     runSteps(state, setup);
 }
 
+/// The same block as two materials, half each (the second the paper's powder), side by
+/// side: the cost of several materials (issue 14), whose force loop gathers a cell's
+/// candidates once per material.
+void BM_SimulationStepTwoMaterials(benchmark::State& state) {
+    SimulationSetup setup = liquidBlock(state.range(0));
+    setup.material.name = "liquid";
+    MaterialSettings powder;
+    powder.name = "powder";
+    powder.preset = "powder";
+    setup.otherMaterials = {powder};
+    EmitterSettings left = setup.emitters[0], right = left;
+    const double middle = 0.5 * (left.min.x + left.max.x);
+    left.max.x = right.min.x = middle;
+    left.count = right.count = state.range(0) / 2;
+    right.material = "powder";
+    setup.emitters = {left, right};
+    runSteps(state, setup);
+}
+
 void BM_SimulationStepAllPairs(benchmark::State& state) {
     runSteps(state, liquidBlock(state.range(0), "all_pairs"));
 }
@@ -55,6 +74,12 @@ BENCHMARK(BM_SimulationStep)
     ->UseRealTime()
     ->MinTime(2.0);
 BENCHMARK(BM_SimulationStepMeshCollider)
+    ->ArgsProduct({{100000}, {1, 2}})
+    ->ArgNames({"globules", "threads"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+BENCHMARK(BM_SimulationStepTwoMaterials)
     ->ArgsProduct({{100000}, {1, 2}})
     ->ArgNames({"globules", "threads"})
     ->Unit(benchmark::kMillisecond)

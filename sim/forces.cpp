@@ -208,14 +208,13 @@ void sumRangeMixed(const PairTable& pairs, const std::vector<SumBatch>& kernels,
             grid.neighborRuns(s.px[first], s.py[first], s.pz[first], cursor, runs);
         std::size_t total = 0;
         for (int b = 0; b < runCount; ++b) total += runs[b].second - runs[b].first;
-        for (std::size_t kind = 0; kind < kinds; ++kind) {
-            GroupCandidates& c = candidates[kind];
+        for (GroupCandidates& c : candidates) {
             c.reserve(total);
             c.count = 0;
-            for (int b = 0; b < runCount; ++b) {
-                collectGroupCandidates(arrays, runs[b].first, runs[b].second, lo, hi,
-                                       groupReach, c, s.material.data(), uint8_t(kind));
-            }
+        }
+        for (int b = 0; b < runCount; ++b) {
+            collectGroupCandidatesByMaterial(arrays, runs[b].first, runs[b].second, lo, hi,
+                                             groupReach, s.material.data(), candidates);
         }
         batch.reserve(total);
         for (std::size_t k = first; k < last; ++k) {

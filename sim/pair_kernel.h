@@ -133,6 +133,57 @@ inline void collectGroupCandidates(const GlobuleArrays& s, uint32_t begin, uint3
     out.count = count;
 }
 
+/// collectGroupCandidates into one list per material: globule j goes to
+/// @p out[material[j]] (every material below out.size()). One pass over the runs.
+inline void collectGroupCandidatesByMaterial(const GlobuleArrays& s, uint32_t begin,
+                                             uint32_t end, const float lo[3], const float hi[3],
+                                             float reach, const uint8_t* material,
+                                             std::vector<GroupCandidates>& out) {
+#if defined(__AVX512F__)
+    const float reach2 = reach * reach;
+    const __m512 zero = _mm512_setzero_ps(), reach2v = _mm512_set1_ps(reach2);
+    const auto outside = [&](__m512 v, int axis) {
+        return _mm512_max_ps(zero, _mm512_max_ps(_mm512_sub_ps(_mm512_set1_ps(lo[axis]), v),
+                                                 _mm512_sub_ps(v, _mm512_set1_ps(hi[axis]))));
+    };
+    for (uint32_t j = begin; j < end; j += 16) {
+        const uint32_t left = end - j;
+        const __mmask16 live = firstLanes(left);
+        const __m512 x = _mm512_maskz_loadu_ps(live, s.x + j);
+        const __m512 y = _mm512_maskz_loadu_ps(live, s.y + j);
+        const __m512 z = _mm512_maskz_loadu_ps(live, s.z + j);
+        const __m512 ex = outside(x, 0), ey = outside(y, 1), ez = outside(z, 2);
+        const __m512 d2 = _mm512_fmadd_ps(ez, ez, _mm512_fmadd_ps(ey, ey, _mm512_mul_ps(ex, ex)));
+        const __mmask16 near = _mm512_mask_cmp_ps_mask(live, d2, reach2v, _CMP_LE_OQ);
+        if (!near) continue;
+        const __m512 vx = _mm512_maskz_loadu_ps(near, s.vx + j);
+        const __m512 vy = _mm512_maskz_loadu_ps(near, s.vy + j);
+        const __m512 vz = _mm512_maskz_loadu_ps(near, s.vz + j);
+        const __m512 r = _mm512_maskz_loadu_ps(near, s.radius + j);
+        for (std::size_t kind = 0; kind < out.size(); ++kind) {
+            const __mmask16 mine = near & materialMask(material + j, left, uint8_t(kind));
+            if (!mine) continue;
+            GroupCandidates& c = out[kind];
+            const auto keep = [&](std::vector<float>& to, __m512 v) {
+                _mm512_storeu_ps(to.data() + c.count, _mm512_maskz_compress_ps(mine, v));
+            };
+            keep(c.x, x);
+            keep(c.y, y);
+            keep(c.z, z);
+            keep(c.vx, vx);
+            keep(c.vy, vy);
+            keep(c.vz, vz);
+            if (!c.uniformRadius) keep(c.radius, r);
+            c.count += uint32_t(__builtin_popcount(mine));
+        }
+    }
+#else
+    for (std::size_t kind = 0; kind < out.size(); ++kind) {
+        collectGroupCandidates(s, begin, end, lo, hi, reach, out[kind], material, uint8_t(kind));
+    }
+#endif
+}
+
 /// Appends to @p out the candidates j of @p c with 0 < |x_i - x_j| < reach (r_i + r_j),
 /// reach = PairForce::cutoff(1), for globule i at (x, y, z) with velocity v and radius r.
 /// Globule i itself (and any globule at exactly its position, whose force is zero) is
