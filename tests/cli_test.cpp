@@ -210,3 +210,40 @@ TEST_F(Cli, QuietStillPrintsWarnings) {
 
 }  // namespace
 }  // namespace globular
+
+namespace globular {
+namespace {
+
+TEST_F(CliTest, ADynamicColliderTravelsThroughEveryStage) {
+    // A ball fired into globules of two materials; the sim stage writes the ball's poses,
+    // the surface stage places its mesh from them, the render stage draws it; then the
+    // surface stage alone, without the poses, is an error naming the file.
+    writeScene("shot.toml",
+               "[simulation]\nframes = 4\n"
+               "[[material]]\nname = \"a\"\n[[material]]\nname = \"b\"\npreset = \"powder\"\n"
+               "[[emitter]]\ncount = 30\n[[emitter]]\ncount = 30\nmaterial = \"b\"\n"
+               "center = [3.0, 5.0, 0.0]\n"
+               "[[collider]]\nname = \"ball\"\nshape = \"sphere\"\nradius = 0.8\n"
+               "center = [-4.0, 6.0, 0.0]\ndynamic = true\nmass = 20.0\n"
+               "velocity = [30.0, 0.0, 0.0]\n"
+               "[render]\nwidth = 160\nheight = 90\ncolor_by = \"material\"\n");
+    const RunResult all = run("run shot.toml --out out");
+    ASSERT_EQ(all.status, 0) << all.err;
+    for (const char* file : {"out/cache/colliders.0004.toml", "out/mesh/colliders.0004.ply",
+                             "out/frames/frame.0004.png"}) {
+        EXPECT_TRUE(std::filesystem::exists(mDir / file)) << file;
+    }
+    // The mesh of frame 4 is where the poses file put the ball: moved on in x.
+    const TriangleMesh ball = readMeshPly(mDir / "out/mesh/colliders.0004.ply");
+    float low = 1e9f;
+    for (std::size_t v = 0; v < ball.vertexCount(); ++v) low = std::min(low, ball.positions[3 * v]);
+    EXPECT_GT(low, -4.0f - 0.8f + 1.0f);
+    std::filesystem::remove(mDir / "out/cache/colliders.0002.toml");
+    const RunResult surface = run("run shot.toml --out out --stages surface");
+    EXPECT_EQ(surface.status, 1);
+    EXPECT_NE(surface.err.find("colliders.0002.toml"), std::string::npos) << surface.err;
+    EXPECT_NE(surface.err.find("'ball' is dynamic"), std::string::npos) << surface.err;
+}
+
+}  // namespace
+}  // namespace globular
