@@ -3,7 +3,7 @@
 # each timed; any crash, sanitizer report, failed test or non-zero exit fails the script.
 #   fuzz  builds the libFuzzer targets with clang (fuzz/, ASan+UBSan) in build-fuzz and
 #         runs each over its seed corpus for FUZZ_SECONDS (scene, ply, vdb_cache,
-#         surface_vdb, mesh, checkpoint); crashing inputs are kept in
+#         surface_vdb, mesh, checkpoint, collider_files); crashing inputs are kept in
 #         build-fuzz/artifacts/ (add them to fuzz/corpus/ once fixed)
 #   asan  builds the whole test suite with GLOBULAR_SANITIZE=ON (gcc, -O1) in build-asan
 #         and runs ctest there
@@ -59,7 +59,7 @@ fuzz_configure_build() {
         -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
         -DGLOBULAR_FUZZ=ON -DGLOBULAR_TESTS=OFF -DGLOBULAR_BENCH=OFF >/dev/null
     cmake --build "$fuzz_build" -j "$jobs" --target scene_fuzzer ply_fuzzer \
-        vdb_cache_fuzzer surface_vdb_fuzzer mesh_fuzzer checkpoint_fuzzer
+        vdb_cache_fuzzer surface_vdb_fuzzer mesh_fuzzer checkpoint_fuzzer collider_files_fuzzer
 }
 
 # fuzz_run NAME: new inputs go to a scratch corpus, so fuzz/corpus/ stays as checked in.
@@ -145,6 +145,7 @@ for part in $parts; do
             timed fuzz-surface-vdb fuzz_run surface_vdb
             timed fuzz-mesh fuzz_run mesh
             timed fuzz-checkpoint fuzz_run checkpoint
+            timed fuzz-collider-files fuzz_run collider_files
             ;;
         asan)
             timed asan-build asan_configure_build
