@@ -69,6 +69,35 @@ std::pair<float, float> buildGrid(const Globules& g, const PairForce& pair, Neig
 
 namespace {
 
+/// One grid cell's members in a range of globules in grid order, and what is around them.
+struct CellGroup {
+    std::size_t last = 0;      ///< the members are [first, last)
+    float lo[3], hi[3];        ///< the members' bounding box
+    int runCount = 0;          ///< runs of candidates in the 27 cells around
+    std::size_t total = 0;     ///< globules in those runs
+    std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> runs;
+};
+
+/// The group of globule @p first's cell within [first, end) of @p s.
+void groupAt(const NeighborGrid& grid, const Globules& s, std::size_t first, std::size_t end,
+             NeighborGrid::RunCursor& cursor, CellGroup& group) {
+    const auto cell = grid.cellOf(s.px[first], s.py[first], s.pz[first]);
+    const float start[3] = {s.px[first], s.py[first], s.pz[first]};
+    for (int a = 0; a < 3; ++a) group.lo[a] = group.hi[a] = start[a];
+    std::size_t last = first + 1;
+    for (; last < end && grid.cellOf(s.px[last], s.py[last], s.pz[last]) == cell; ++last) {
+        const float p[3] = {s.px[last], s.py[last], s.pz[last]};
+        for (int a = 0; a < 3; ++a) {
+            group.lo[a] = std::min(group.lo[a], p[a]);
+            group.hi[a] = std::max(group.hi[a], p[a]);
+        }
+    }
+    group.last = last;
+    group.runCount = grid.neighborRuns(s.px[first], s.py[first], s.pz[first], cursor, group.runs);
+    group.total = 0;
+    for (int b = 0; b < group.runCount; ++b) group.total += group.runs[b].second - group.runs[b].first;
+}
+
 /// Sums forces on the globules [begin, end) of @p s, which are in grid order. Globules
 /// that share a cell are consecutive: they are handled as a group with shared candidates.
 template <int M, int N>
@@ -80,32 +109,19 @@ void sumRange(const PairForce& pair, const NeighborGrid& grid, const Globules& s
     // The cell edge is the largest reach of any pair; a hair more keeps the box test
     // conservative under rounding (the pair test decides).
     const float groupReach = grid.cellSize() * 1.0001f;
-    std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> runs;
     NeighborGrid::RunCursor cursor;
+    CellGroup group;
     GroupCandidates candidates;
     candidates.uniformRadius = uniformRadius;
     NeighborBatch batch;
     for (std::size_t first = begin; first < end;) {
-        const auto cell = grid.cellOf(s.px[first], s.py[first], s.pz[first]);
-        float lo[3] = {s.px[first], s.py[first], s.pz[first]};
-        float hi[3] = {lo[0], lo[1], lo[2]};
-        std::size_t last = first + 1;
-        for (; last < end && grid.cellOf(s.px[last], s.py[last], s.pz[last]) == cell; ++last) {
-            const float p[3] = {s.px[last], s.py[last], s.pz[last]};
-            for (int a = 0; a < 3; ++a) {
-                lo[a] = std::min(lo[a], p[a]);
-                hi[a] = std::max(hi[a], p[a]);
-            }
-        }
-        const int runCount =
-            grid.neighborRuns(s.px[first], s.py[first], s.pz[first], cursor, runs);
-        std::size_t total = 0;
-        for (int b = 0; b < runCount; ++b) total += runs[b].second - runs[b].first;
-        candidates.reserve(total);
+        groupAt(grid, s, first, end, cursor, group);
+        const std::size_t last = group.last;
+        candidates.reserve(group.total);
         candidates.count = 0;
-        for (int b = 0; b < runCount; ++b) {
-            collectGroupCandidates(arrays, runs[b].first, runs[b].second, lo, hi, groupReach,
-                                   candidates);
+        for (int b = 0; b < group.runCount; ++b) {
+            collectGroupCandidates(arrays, group.runs[b].first, group.runs[b].second, group.lo,
+                                   group.hi, groupReach, candidates);
         }
         batch.reserve(candidates.count);
         for (std::size_t k = first; k < last; ++k) {
@@ -187,36 +203,24 @@ void sumRangeMixed(const PairTable& pairs, const std::vector<SumBatch>& kernels,
                                s.vy.data(), s.vz.data(), s.radius.data()};
     const std::size_t kinds = pairs.materials();
     const float groupReach = grid.cellSize() * 1.0001f;
-    std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> runs;
     NeighborGrid::RunCursor cursor;
+    CellGroup group;
     std::vector<GroupCandidates> candidates(kinds);
     for (GroupCandidates& c : candidates) c.uniformRadius = uniformRadius;
     NeighborBatch batch;
     for (std::size_t first = begin; first < end;) {
-        const auto cell = grid.cellOf(s.px[first], s.py[first], s.pz[first]);
-        float lo[3] = {s.px[first], s.py[first], s.pz[first]};
-        float hi[3] = {lo[0], lo[1], lo[2]};
-        std::size_t last = first + 1;
-        for (; last < end && grid.cellOf(s.px[last], s.py[last], s.pz[last]) == cell; ++last) {
-            const float p[3] = {s.px[last], s.py[last], s.pz[last]};
-            for (int a = 0; a < 3; ++a) {
-                lo[a] = std::min(lo[a], p[a]);
-                hi[a] = std::max(hi[a], p[a]);
-            }
-        }
-        const int runCount =
-            grid.neighborRuns(s.px[first], s.py[first], s.pz[first], cursor, runs);
-        std::size_t total = 0;
-        for (int b = 0; b < runCount; ++b) total += runs[b].second - runs[b].first;
+        groupAt(grid, s, first, end, cursor, group);
+        const std::size_t last = group.last;
         for (GroupCandidates& c : candidates) {
-            c.reserve(total);
+            c.reserve(group.total);
             c.count = 0;
         }
-        for (int b = 0; b < runCount; ++b) {
-            collectGroupCandidatesByMaterial(arrays, runs[b].first, runs[b].second, lo, hi,
-                                             groupReach, s.material.data(), candidates);
+        for (int b = 0; b < group.runCount; ++b) {
+            collectGroupCandidatesByMaterial(arrays, group.runs[b].first, group.runs[b].second,
+                                             group.lo, group.hi, groupReach, s.material.data(),
+                                             candidates);
         }
-        batch.reserve(total);
+        batch.reserve(group.total);
         for (std::size_t k = first; k < last; ++k) {
             const std::size_t mine = s.material[k];
             float fx = 0, fy = 0, fz = 0;

@@ -59,6 +59,31 @@ struct GroupCandidates {
 };
 
 #if defined(__AVX512F__)
+/// Sixteen globules from @p j of @p s: their positions, and which of the first @p left lie
+/// within reach (@p reach2 squared) of the box [@p lo, @p hi].
+struct NearBox {
+    __m512 x, y, z;
+    __mmask16 near;
+};
+
+inline NearBox nearBox(const GlobuleArrays& s, uint32_t j, uint32_t left, const float lo[3],
+                       const float hi[3], __m512 reach2) {
+    const __m512 zero = _mm512_setzero_ps();
+    const auto outside = [&](__m512 v, int axis) {  // distance from the box along an axis
+        return _mm512_max_ps(zero, _mm512_max_ps(_mm512_sub_ps(_mm512_set1_ps(lo[axis]), v),
+                                                 _mm512_sub_ps(v, _mm512_set1_ps(hi[axis]))));
+    };
+    const __mmask16 live = firstLanes(left);
+    NearBox b;
+    b.x = _mm512_maskz_loadu_ps(live, s.x + j);
+    b.y = _mm512_maskz_loadu_ps(live, s.y + j);
+    b.z = _mm512_maskz_loadu_ps(live, s.z + j);
+    const __m512 ex = outside(b.x, 0), ey = outside(b.y, 1), ez = outside(b.z, 2);
+    const __m512 d2 = _mm512_fmadd_ps(ez, ez, _mm512_fmadd_ps(ey, ey, _mm512_mul_ps(ex, ex)));
+    b.near = _mm512_mask_cmp_ps_mask(live, d2, reach2, _CMP_LE_OQ);
+    return b;
+}
+
 /// The lanes among the first @p left (at most 16 used) whose material is @p want.
 inline __mmask16 materialMask(const uint8_t* material, uint32_t left, uint8_t want) {
 #if defined(__AVX512BW__) && defined(__AVX512VL__)
@@ -82,20 +107,12 @@ inline void collectGroupCandidates(const GlobuleArrays& s, uint32_t begin, uint3
     uint32_t count = out.count;
     const float reach2 = reach * reach;
 #if defined(__AVX512F__)
-    const __m512 zero = _mm512_setzero_ps(), reach2v = _mm512_set1_ps(reach2);
-    const auto outside = [&](__m512 v, int axis) {  // distance from the box along an axis
-        return _mm512_max_ps(zero, _mm512_max_ps(_mm512_sub_ps(_mm512_set1_ps(lo[axis]), v),
-                                                 _mm512_sub_ps(v, _mm512_set1_ps(hi[axis]))));
-    };
+    const __m512 reach2v = _mm512_set1_ps(reach2);
     for (uint32_t j = begin; j < end; j += 16) {
         const uint32_t left = end - j;
-        const __mmask16 live = firstLanes(left);
-        const __m512 x = _mm512_maskz_loadu_ps(live, s.x + j);
-        const __m512 y = _mm512_maskz_loadu_ps(live, s.y + j);
-        const __m512 z = _mm512_maskz_loadu_ps(live, s.z + j);
-        const __m512 ex = outside(x, 0), ey = outside(y, 1), ez = outside(z, 2);
-        const __m512 d2 = _mm512_fmadd_ps(ez, ez, _mm512_fmadd_ps(ey, ey, _mm512_mul_ps(ex, ex)));
-        __mmask16 near = _mm512_mask_cmp_ps_mask(live, d2, reach2v, _CMP_LE_OQ);
+        const NearBox box = nearBox(s, j, left, lo, hi, reach2v);
+        const __m512 x = box.x, y = box.y, z = box.z;
+        __mmask16 near = box.near;
         if (material) near &= materialMask(material + j, left, want);
         const auto keep = [&](std::vector<float>& to, __m512 v) {
             _mm512_storeu_ps(to.data() + count, _mm512_maskz_compress_ps(near, v));
@@ -140,22 +157,13 @@ inline void collectGroupCandidatesByMaterial(const GlobuleArrays& s, uint32_t be
                                              float reach, const uint8_t* material,
                                              std::vector<GroupCandidates>& out) {
 #if defined(__AVX512F__)
-    const float reach2 = reach * reach;
-    const __m512 zero = _mm512_setzero_ps(), reach2v = _mm512_set1_ps(reach2);
-    const auto outside = [&](__m512 v, int axis) {
-        return _mm512_max_ps(zero, _mm512_max_ps(_mm512_sub_ps(_mm512_set1_ps(lo[axis]), v),
-                                                 _mm512_sub_ps(v, _mm512_set1_ps(hi[axis]))));
-    };
+    const __m512 reach2v = _mm512_set1_ps(reach * reach);
     for (uint32_t j = begin; j < end; j += 16) {
         const uint32_t left = end - j;
-        const __mmask16 live = firstLanes(left);
-        const __m512 x = _mm512_maskz_loadu_ps(live, s.x + j);
-        const __m512 y = _mm512_maskz_loadu_ps(live, s.y + j);
-        const __m512 z = _mm512_maskz_loadu_ps(live, s.z + j);
-        const __m512 ex = outside(x, 0), ey = outside(y, 1), ez = outside(z, 2);
-        const __m512 d2 = _mm512_fmadd_ps(ez, ez, _mm512_fmadd_ps(ey, ey, _mm512_mul_ps(ex, ex)));
-        const __mmask16 near = _mm512_mask_cmp_ps_mask(live, d2, reach2v, _CMP_LE_OQ);
+        const NearBox box = nearBox(s, j, left, lo, hi, reach2v);
+        const __mmask16 near = box.near;
         if (!near) continue;
+        const __m512 x = box.x, y = box.y, z = box.z;
         const __m512 vx = _mm512_maskz_loadu_ps(near, s.vx + j);
         const __m512 vy = _mm512_maskz_loadu_ps(near, s.vy + j);
         const __m512 vz = _mm512_maskz_loadu_ps(near, s.vz + j);
