@@ -141,19 +141,25 @@ void sumRange(const PairForce& pair, const NeighborGrid& grid, const Globules& s
 using SumRange = void (*)(const PairForce&, const NeighborGrid&, const Globules&, bool,
                           std::size_t, std::size_t, Accelerations&);
 
-/// The kernel for the material's exponents: unrolled powers for the pairs the paper
-/// uses, pow() otherwise.
-SumRange kernelFor(const PairForce& pair) {
+/// What @p instance gives for the pair's exponents: instance.operator()<M, N>() with the
+/// exponents unrolled for the pairs the paper uses, <0, 0> (pow()) otherwise.
+template <typename Instance>
+auto forExponents(const PairForce& pair, Instance&& instance) {
     if (pair.integerExponents) {
         const int m = pair.mInt, n = pair.nInt;
-        if (m == 5 && n == 3) return sumRange<5, 3>;
-        if (m == 5 && n == 1) return sumRange<5, 1>;
-        if (m == 5 && n == 4) return sumRange<5, 4>;
-        if (m == 10 && n == 3) return sumRange<10, 3>;
-        if (m == 7 && n == 5) return sumRange<7, 5>;
-        if (m == 12 && n == 6) return sumRange<12, 6>;
+        if (m == 5 && n == 3) return instance.template operator()<5, 3>();
+        if (m == 5 && n == 1) return instance.template operator()<5, 1>();
+        if (m == 5 && n == 4) return instance.template operator()<5, 4>();
+        if (m == 10 && n == 3) return instance.template operator()<10, 3>();
+        if (m == 7 && n == 5) return instance.template operator()<7, 5>();
+        if (m == 12 && n == 6) return instance.template operator()<12, 6>();
     }
-    return sumRange<0, 0>;
+    return instance.template operator()<0, 0>();
+}
+
+/// The force loop for the material's exponents.
+SumRange kernelFor(const PairForce& pair) {
+    return forExponents(pair, []<int M, int N>() { return SumRange(sumRange<M, N>); });
 }
 
 }  // namespace
@@ -181,16 +187,7 @@ namespace {
 using SumBatch = void (*)(const PairForce&, const NeighborBatch&, float&, float&, float&);
 
 SumBatch batchKernelFor(const PairForce& pair) {
-    if (pair.integerExponents) {
-        const int m = pair.mInt, n = pair.nInt;
-        if (m == 5 && n == 3) return sumBatch<5, 3>;
-        if (m == 5 && n == 1) return sumBatch<5, 1>;
-        if (m == 5 && n == 4) return sumBatch<5, 4>;
-        if (m == 10 && n == 3) return sumBatch<10, 3>;
-        if (m == 7 && n == 5) return sumBatch<7, 5>;
-        if (m == 12 && n == 6) return sumBatch<12, 6>;
-    }
-    return sumBatch<0, 0>;
+    return forExponents(pair, []<int M, int N>() { return SumBatch(sumBatch<M, N>); });
 }
 
 /// sumRange for several materials: a cell's candidates gathered once per material, and
