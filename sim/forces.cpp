@@ -45,20 +45,7 @@ std::pair<float, float> radiusRange(const Globules& g) {
 }  // namespace
 
 void pairForcesAllPairs(const Globules& g, const PairForce& pair, Accelerations& forces) {
-    const std::size_t n = g.size();
-    forces.resize(n);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                              float f[3] = {0, 0, 0};
-                              for (std::size_t j = 0; j < n; ++j) {
-                                  if (j != i) addPair(g, pair, i, j, f);
-                              }
-                              forces.x[i] = f[0];
-                              forces.y[i] = f[1];
-                              forces.z[i] = f[2];
-                          }
-                      });
+    pairForcesAllPairs(g, PairTable(pair), forces);
 }
 
 std::pair<float, float> buildGrid(const Globules& g, const PairForce& pair, NeighborGrid& grid) {
