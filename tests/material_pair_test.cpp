@@ -15,6 +15,7 @@
 #include "forces.h"
 #include "reporter.h"
 #include "simulation.h"
+#include "simulation_runs.h"
 
 using namespace globular;
 
@@ -151,13 +152,7 @@ TEST(MaterialPairs, MomentumIsConservedWithTwoMaterials) {
 
 TEST(MaterialPairs, ResultsAreIdenticalForAnyThreadCountAndOnResume) {
     const SimulationSetup setup = twoSauces();
-    const auto run = [&](int threads, int frames) {
-        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-        Simulation sim(setup);
-        NullReporter quiet;
-        for (int f = 2; f <= frames; ++f) sim.advanceFrame(f, quiet);
-        return sim.saveState();
-    };
+    const auto run = [&](int threads, int frames) { return stateAfter(setup, threads, frames); };
     const SimulationState one = run(1, 12), two = run(2, 12);
     EXPECT_EQ(one.globules.px, two.globules.px);
     EXPECT_EQ(one.globules.material, two.globules.material);

@@ -13,6 +13,7 @@
 #include "collider_solid.h"
 #include "reporter.h"
 #include "simulation.h"
+#include "simulation_runs.h"
 
 using namespace globular;
 
@@ -179,13 +180,7 @@ TEST(RigidBody, ResultsAreIdenticalForAnyThreadCountAndOnResume) {
     k1.position = {0, 1, 0};
     wall.keys = {k0, k1};
     setup.colliders.push_back(wall);
-    const auto run = [&](int threads, int frames) {
-        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-        Simulation sim(setup);
-        NullReporter quiet;
-        for (int f = 2; f <= frames; ++f) sim.advanceFrame(f, quiet);
-        return sim.saveState();
-    };
+    const auto run = [&](int threads, int frames) { return stateAfter(setup, threads, frames); };
     const SimulationState one = run(1, 16), two = run(2, 16);
     EXPECT_EQ(one.globules.px, two.globules.px);
     ASSERT_EQ(one.bodies.size(), 1u);
