@@ -157,6 +157,7 @@ void pairForcesSorting(Globules& g, const PairForce& pair, NeighborWorkspace& w,
     forces.resize(n);
     if (n == 0) return;
     const auto [smallest, largest] = buildGrid(g, pair, w.grid);
+    w.largestRadius = largest;
     // The accelerations are about to be overwritten: their array is the reorder's scratch
     // (no extra 4 bytes per globule).
     g.permute(w.grid.sortedOrder(), forces.x);
@@ -234,6 +235,7 @@ void pairForcesSorting(Globules& g, const PairTable& pairs, NeighborWorkspace& w
     if (n == 0) return;
     if (g.material.size() != n) throw Error("several materials, but globules without one");
     const auto [smallest, largest] = radiusRange(g);
+    w.largestRadius = largest;
     w.grid.build(g.px.data(), g.py.data(), g.pz.data(), n, pairs.cutoff(2.0f * largest));
     g.permute(w.grid.sortedOrder(), forces.x);
     std::vector<SumBatch> kernels;
@@ -330,8 +332,10 @@ void ForceField::addExternalForces(Globules& g, Accelerations& out) {
         // a collider whose surface is out of reach of the whole block (its distance at
         // the block's centre beyond the half-diagonal and the contact's reach) is skipped
         // for the run. The distance of an exact SDF changes no faster than the point
-        // moves; a mesh's trilinear field up to sqrt(3) times as fast. Skipped colliders
-        // would add exactly zero: the results are the same bit for bit.
+        // moves; a mesh's trilinear field up to sqrt(3) times as fast. A skipped collider
+        // would add exactly zero; a globule out of every collider's reach takes the
+        // single-precision path of a scene without colliders. Which path a globule takes
+        // depends only on positions, so results stay the same for any thread count.
         const float edge = mAllPairs ? 4 * mLargestRadius : mWorkspace.grid.cellSize();
         const double halfDiagonal = 0.5 * std::sqrt(3.0) * edge;
         const auto farFrom = [&](const std::array<int64_t, 3>& block, std::vector<uint8_t>& far) {
@@ -412,7 +416,9 @@ void ForceField::compute(Globules& g, Accelerations& out) {
         one ? pairForcesSorting(g, mPairs(0, 0), mWorkspace, out)
             : pairForcesSorting(g, mPairs, mWorkspace, out);
     }
-    if (!mExternal.colliders.empty()) mLargestRadius = radiusRange(g).second;
+    if (!mExternal.colliders.empty()) {  // the grid already knows it
+        mLargestRadius = mAllPairs ? radiusRange(g).second : mWorkspace.largestRadius;
+    }
     addExternalForces(g, out);
 }
 

@@ -40,6 +40,7 @@ void pairForcesAllPairs(const Globules& globules, const PairForce& pair, Acceler
 /// What the grid force loop keeps between steps.
 struct NeighborWorkspace {
     NeighborGrid grid;
+    float largestRadius = 0;  ///< of the globules the grid was last built over
 };
 
 /// The same sums over cell-list neighbours only. Sorts @p globules into neighbour-grid
