@@ -33,19 +33,22 @@ bool Globules::consistent() const {
     for (const auto* a : {&py, &pz, &vx, &vy, &vz, &radius, &mass}) {
         if (a->size() != n) return false;
     }
-    return id.size() == n && (material.empty() || material.size() == n);
+    return id.size() == n && (material.empty() || material.size() == n) &&
+           (temperature.empty() || temperature.size() == n);
 }
 
 void Globules::reserve(std::size_t n) {
     for (auto* a : {&px, &py, &pz, &vx, &vy, &vz, &radius, &mass}) a->reserve(n);
     id.reserve(n);
     if (!material.empty()) material.reserve(n);
+    if (!temperature.empty()) temperature.reserve(n);
 }
 
 void Globules::clear() {
     for (auto* a : {&px, &py, &pz, &vx, &vy, &vz, &radius, &mass}) a->clear();
     id.clear();
     material.clear();
+    temperature.clear();
 }
 
 std::size_t Globules::add(Vec3 p, Vec3 v, float r, float m, int32_t globuleId) {
@@ -63,6 +66,7 @@ std::size_t Globules::add(Vec3 p, Vec3 v, float r, float m, int32_t globuleId) {
 
 void Globules::permute(const std::vector<uint32_t>& order, std::vector<float>& scratch) {
     for (auto* a : {&px, &py, &pz, &vx, &vy, &vz, &radius, &mass}) permuteArray(*a, order, scratch);
+    if (!temperature.empty()) permuteArray(temperature, order, scratch);
     // The ids travel through the same float scratch, bit for bit.
     scratch.resize(id.size());
     forEachIndex(order.size(), [&](std::size_t k) { scratch[k] = std::bit_cast<float>(id[order[k]]); });

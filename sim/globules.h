@@ -19,11 +19,14 @@ struct Globules {
     std::vector<int32_t> id;        ///< stable identity, unique, survives reordering
     /// Index into the scene's materials; empty when the scene has one (no cost then).
     std::vector<uint8_t> material;
+    /// Temperature, degrees of the scene's choosing; empty when the scene has no
+    /// [thermal] section enabled (no cost then).
+    std::vector<float> temperature;
 
     std::size_t size() const { return px.size(); }
     /// Material of globule @p i (0 when there is one material).
     uint8_t materialOf(std::size_t i) const { return material.empty() ? 0 : material[i]; }
-    /// Whether every array holds size() elements (material: or none).
+    /// Whether every array holds size() elements (material, temperature: or none).
     bool consistent() const;
     bool empty() const { return px.empty(); }
 
