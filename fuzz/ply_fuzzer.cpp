@@ -3,8 +3,9 @@
 // The reader takes a path, so each input is written to a file under /tmp (one per
 // process, reused) and read back. An IoError is the expected answer to a bad file;
 // anything else (a sanitizer report, another exception, a crash) is a bug. A file that
-// reads must give arrays of one length.
+// reads must give arrays of one length (temperature: or none) and finite temperatures.
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -29,6 +30,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
             if (a->size() != n) std::abort();
         }
         if (g.id.size() != n) std::abort();
+        if (!g.temperature.empty() && g.temperature.size() != n) std::abort();
+        for (float t : g.temperature) {
+            if (!std::isfinite(t)) std::abort();
+        }
     } catch (const globular::Error&) {
     }
     return 0;

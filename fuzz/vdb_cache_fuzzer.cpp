@@ -14,9 +14,10 @@
 // fuzz/corpus/vdb_cache are '1' (names ending .reseal) or '0', then a cache written by
 // `globular run` (some damaged or cut by hand). An IoError is the expected answer to a bad
 // file; anything else (a sanitizer report or a crash in this process, another exception)
-// is a bug. A cache that reads must give arrays of one length, mass 1 everywhere, globules
-// ordered by id (as the header promises).
+// is a bug. A cache that reads must give arrays of one length (temperature: or none),
+// finite temperatures, mass 1 everywhere, globules ordered by id (as the header promises).
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -53,6 +54,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
             if (a->size() != n) inconsistent("arrays of different lengths");
         }
         if (g.id.size() != n) inconsistent("an id array of another length");
+        if (!g.temperature.empty() && g.temperature.size() != n) {
+            inconsistent("a temperature array of another length");
+        }
+        for (float t : g.temperature) {
+            if (!std::isfinite(t)) inconsistent("a non-finite temperature");
+        }
         for (std::size_t i = 0; i < n; ++i) {
             if (g.mass[i] != 1.0f) inconsistent("a mass other than 1");
             if (i > 0 && g.id[i - 1] > g.id[i]) inconsistent("globules not ordered by id");

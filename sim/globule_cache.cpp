@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <mutex>
 #include <numeric>
 #include <string>
@@ -76,7 +77,8 @@ struct ArrayList {
 /// @brief Voxel edge of the point grid: twice the largest radius, so globules resting
 /// about a radius apart share a voxel with a handful of neighbours (OpenVDB suggests ~8
 /// points per voxel). Far-flung globules enlarge it so index coordinates fit in int32.
-/// @throw IoError when a position is not finite: such a frame cannot be stored.
+/// @throw IoError when a position or temperature is not finite: such a frame cannot be
+///        stored.
 double chooseVoxelSize(const fs::path& path, const Globules& g) {
     float maxRadius = 0;
     double maxAbs = 0;
@@ -90,6 +92,10 @@ double chooseVoxelSize(const fs::path& path, const Globules& g) {
             maxAbs = std::max(maxAbs, double(std::fabs(c)));
         }
         if (std::isfinite(g.radius[i])) maxRadius = std::max(maxRadius, g.radius[i]);
+        if (!g.temperature.empty() && !std::isfinite(g.temperature[i])) {
+            throw IoError("cannot write " + path.string() + ": globule " +
+                          std::to_string(g.id[i]) + " has a non-finite temperature");
+        }
     }
     double voxelSize = maxRadius > 0 ? 2.0 * maxRadius : 1.0;
     return std::max({voxelSize, kMinVoxelSize, maxAbs / kMaxIndexCoord});
@@ -115,6 +121,10 @@ vdbp::PointDataGrid::Ptr buildGrid(const fs::path& path, const Globules& g, cons
     std::vector<int32_t> materials(g.size());
     for (std::size_t i = 0; i < g.size(); ++i) materials[i] = g.materialOf(i);
     vdbp::populateAttribute(tree, indexTree, "material", ArrayList<int32_t>{materials});
+    if (!g.temperature.empty()) {
+        vdbp::appendAttribute<float>(tree, "temperature");
+        vdbp::populateAttribute(tree, indexTree, "temperature", ArrayList<float>{g.temperature});
+    }
 
     grid->setName(kGridName);
     grid->setCreator("globular");
@@ -182,6 +192,16 @@ void readLeaf(const Leaf& leaf, const openvdb::math::Transform& xform, std::size
             out.material[start + k] = uint8_t(m);
         });
     }
+    if (std::size_t i = descriptor.find("temperature"); i != vdbp::AttributeSet::INVALID_POS) {
+        // Present on one leaf, present on all: the descriptor is shared by the tree.
+        if (out.temperature.empty()) out.temperature.assign(out.size(), 0.0f);
+        forEachValue<float, double>(leaf, i, "temperature", [&](std::size_t k, auto t) {
+            if (!std::isfinite(t) || std::abs(t) > std::numeric_limits<float>::max()) {
+                throw std::runtime_error("a temperature is not a finite float");
+            }
+            out.temperature[start + k] = float(t);
+        });
+    }
 }
 
 /// @brief Globules of a point grid, ordered by id so that a cache reads back in the
@@ -216,7 +236,8 @@ Globules globulesOf(const vdbp::PointDataGrid& grid) {
     return out;
 }
 
-// What a reader's child process sends back: count, frame, time, then the arrays.
+// What a reader's child process sends back: count, frame, time, whether temperature is
+// present (one byte), then the arrays.
 struct Packet {
     std::string bytes;
     template <typename T>
@@ -235,11 +256,13 @@ std::string packGlobules(const Globules& g, const CacheInfo& info) {
     p.value(uint64_t(g.size()));
     p.value(int32_t(info.frame));
     p.value(info.time);
+    p.value(uint8_t(g.temperature.empty() ? 0 : 1));
     for (const auto* a : {&g.px, &g.py, &g.pz, &g.vx, &g.vy, &g.vz, &g.radius, &g.mass}) {
         p.array(*a);
     }
     p.array(g.id);
     p.array(g.material);
+    p.array(g.temperature);
     return std::move(p.bytes);
 }
 
@@ -256,8 +279,12 @@ Globules unpackGlobules(const std::string& bytes, CacheInfo& info) {
     take(&n, sizeof n);
     take(&frame, sizeof frame);
     take(&info.time, sizeof info.time);
+    uint8_t hasTemperature = 0;
+    take(&hasTemperature, sizeof hasTemperature);
     info.frame = frame;
-    const uint64_t perGlobule = 8 * sizeof(float) + sizeof(int32_t) + sizeof(uint8_t);
+    if (hasTemperature > 1) throw std::runtime_error("malformed answer from the reader");
+    const uint64_t perGlobule =
+        (8 + hasTemperature) * sizeof(float) + sizeof(int32_t) + sizeof(uint8_t);
     if (n > (bytes.size() - pos) / perGlobule || n * perGlobule != bytes.size() - pos) {
         throw std::runtime_error("answer of the wrong size from the reader");
     }
@@ -270,6 +297,10 @@ Globules unpackGlobules(const std::string& bytes, CacheInfo& info) {
     take(g.id.data(), n * sizeof(int32_t));
     g.material.resize(n);
     take(g.material.data(), n * sizeof(uint8_t));
+    if (hasTemperature) {
+        g.temperature.resize(n);
+        take(g.temperature.data(), n * sizeof(float));
+    }
     return g;
 }
 

@@ -1,8 +1,10 @@
 #pragma once
 // Per-frame globule caches. The VDB cache is an OpenVDB PointDataGrid named "globules"
-// with attributes P, v (Vec3f), pscale (radius, float) and id (int32): the names Houdini
-// reads. The PLY cache (binary little endian, vertex properties x y z vx vy vz radius id)
-// is what Blender imports. Both are written atomically (atomic_file.h).
+// with attributes P, v (Vec3f), pscale (radius, float), id and material (int32): the
+// names Houdini reads, and temperature (float) when the globules carry one. The PLY
+// cache (binary little endian, vertex properties x y z vx vy vz radius id material, then
+// temperature when carried) is what Blender imports. Both are written atomically
+// (atomic_file.h).
 // OpenVDB headers stay inside globule_cache.cpp: this header is cheap to include.
 
 #include <filesystem>
@@ -19,25 +21,30 @@ struct CacheInfo {
 
 /// Positions are stored at full float precision in a point grid whose voxel is twice the
 /// largest radius; CacheInfo is grid metadata "frame" (int) and "time" (double).
-/// @throw IoError naming @p path when it cannot be written, or when a position is not
-///        finite (then nothing is written).
+/// @throw IoError naming @p path when it cannot be written, or when a position or a
+///        temperature is not finite (then nothing is written).
 void writeGlobuleVdb(const std::filesystem::path& path, const Globules& globules,
                      const CacheInfo& info);
 /// Reads a cache written by writeGlobuleVdb (or any PointDataGrid "globules" with P;
-/// v, pscale, id optional: defaults 0, 1, index). Mass is set to 1. Globules come back
+/// v, pscale, id optional: defaults 0, 1, index; temperature read when present, else
+/// left empty; a non-finite one is an error). Mass is set to 1. Globules come back
 /// ordered by id. The file is checked before OpenVDB parses it (which would abort on a
 /// truncated file): its layout always, and for files written by writeGlobuleVdb a
 /// checksum kept in the file-level metadata "globular_checksum".
 /// @throw IoError naming @p path when it is missing, truncated or corrupt.
 Globules readGlobuleVdb(const std::filesystem::path& path, CacheInfo* info = nullptr);
 
-/// Binary PLY: x y z vx vy vz radius (float) id (int).
+/// Binary PLY: x y z vx vy vz radius (float) id material (int), temperature (float) when
+/// the globules carry one.
+/// @throw IoError naming @p path, also for a non-finite temperature.
 void writeGlobulePly(const std::filesystem::path& path, const Globules& globules);
 /// Reads a PLY point cloud (ascii, binary little or big endian; ply_reader.h). Vertex
 /// properties x y z are required; vx vy vz radius id optional (defaults: 0,
-/// @p defaultRadius, index).
+/// @p defaultRadius, index); temperature read when present, else left empty. Material
+/// is not read (a scene assigns it).
 /// @throw IoError naming @p path and what is wrong, also for a globule with a
-///        non-finite position or velocity or a radius that is not positive and finite.
+///        non-finite position, velocity or temperature or a radius that is not positive
+///        and finite.
 Globules readGlobulePly(const std::filesystem::path& path, float defaultRadius = 1.0f);
 
 }  // namespace globular

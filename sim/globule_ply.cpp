@@ -40,14 +40,15 @@ static_assert(std::endian::native == std::endian::little,
 /// Clouds larger than this are refused before they are read.
 constexpr uint64_t kMaxPlyBytes = uint64_t(16) << 30;
 
-enum class Slot { X, Y, Z, Vx, Vy, Vz, Radius, Id, Ignored };
+enum class Slot { X, Y, Z, Vx, Vy, Vz, Radius, Temperature, Id, Ignored };
 
 Slot slotOf(const PlyProperty& p) {
     if (p.isList()) return Slot::Ignored;
     static const std::pair<std::string_view, Slot> kNames[] = {
         {"x", Slot::X},           {"y", Slot::Y},           {"z", Slot::Z},
         {"vx", Slot::Vx},         {"vy", Slot::Vy},         {"vz", Slot::Vz},
-        {"radius", Slot::Radius}, {"pscale", Slot::Radius}, {"id", Slot::Id}};
+        {"radius", Slot::Radius}, {"pscale", Slot::Radius}, {"id", Slot::Id},
+        {"temperature", Slot::Temperature}};
     for (const auto& [n, s] : kNames) {
         if (n == p.name) return s;
     }
@@ -70,6 +71,9 @@ void checkGlobule(const Globules& g, std::size_t i, int line) {
         throw std::runtime_error(where() + " has radius " + std::to_string(g.radius[i]) +
                                  ": a radius must be a positive finite number");
     }
+    if (!g.temperature.empty() && !std::isfinite(g.temperature[i])) {
+        throw std::runtime_error(where() + " has a non-finite temperature");
+    }
 }
 
 Globules readVertices(const PlyElement& e, PlyCursor& in, float defaultRadius, bool ascii) {
@@ -89,8 +93,11 @@ Globules readVertices(const PlyElement& e, PlyCursor& in, float defaultRadius, b
     g.mass.assign(n, 1.0f);
     g.id.resize(n);
     std::iota(g.id.begin(), g.id.end(), 0);
-    float* const targets[] = {g.px.data(), g.py.data(), g.pz.data(),    g.vx.data(),
-                              g.vy.data(), g.vz.data(), g.radius.data()};
+    if (std::find(slots.begin(), slots.end(), Slot::Temperature) != slots.end()) {
+        g.temperature.assign(n, 0.0f);
+    }
+    float* const targets[] = {g.px.data(), g.py.data(), g.pz.data(),     g.vx.data(),
+                              g.vy.data(), g.vz.data(), g.radius.data(), g.temperature.data()};
     for (std::size_t i = 0; i < n; ++i) {
         for (std::size_t k = 0; k < e.properties.size(); ++k) {
             const PlyProperty& p = e.properties[k];
@@ -127,24 +134,35 @@ void writeGlobulePly(const fs::path& path, const Globules& globules) {
     }
     vertex.properties.push_back({"id", PlyType::Int32});
     vertex.properties.push_back({"material", PlyType::Int32});
+    const bool hasTemperature = !g.temperature.empty();
+    if (hasTemperature) vertex.properties.push_back({"temperature", PlyType::Float32});
     const std::string header = plyHeader("globular globule cache", {vertex});
-    constexpr std::size_t kRowSize = 7 * sizeof(float) + 2 * sizeof(int32_t);
+    const std::size_t rowSize = 7 * sizeof(float) + 2 * sizeof(int32_t) +
+                                 (hasTemperature ? sizeof(float) : 0);
     constexpr std::size_t kChunk = 1 << 14;  // rows per write
     writeAtomically(path, [&](const fs::path& temporary) {
         std::ofstream out(temporary, std::ios::binary);
         if (!out) throw std::runtime_error(std::strerror(errno));
         out.write(header.data(), std::streamsize(header.size()));
-        std::vector<char> buffer(kChunk * kRowSize);
+        std::vector<char> buffer(kChunk * rowSize);
         for (std::size_t begin = 0; begin < g.size(); begin += kChunk) {
             const std::size_t end = std::min(g.size(), begin + kChunk);
             char* p = buffer.data();
-            for (std::size_t i = begin; i < end; ++i, p += kRowSize) {
+            for (std::size_t i = begin; i < end; ++i, p += rowSize) {
                 const float row[7] = {g.px[i], g.py[i], g.pz[i],    g.vx[i],
                                       g.vy[i], g.vz[i], g.radius[i]};
                 std::memcpy(p, row, sizeof row);
                 const int32_t material = g.materialOf(i);
                 std::memcpy(p + sizeof row, &g.id[i], sizeof(int32_t));
                 std::memcpy(p + sizeof row + sizeof(int32_t), &material, sizeof(int32_t));
+                if (hasTemperature) {
+                    if (!std::isfinite(g.temperature[i])) {
+                        throw std::runtime_error("globule " + std::to_string(g.id[i]) +
+                                                 " has a non-finite temperature");
+                    }
+                    std::memcpy(p + sizeof row + 2 * sizeof(int32_t), &g.temperature[i],
+                                sizeof(float));
+                }
             }
             out.write(buffer.data(), p - buffer.data());
         }

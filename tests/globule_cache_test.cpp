@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <random>
 #include <string>
@@ -117,6 +118,65 @@ TEST_F(GlobuleCacheTest, MaterialsTravelInTheVdbAndPlyCaches) {
     writeGlobuleVdb(mDir / "single.vdb", randomGlobules(50, 6), {1, 0.0});
     const Globules single = readGlobuleVdb(mDir / "single.vdb");
     for (std::size_t i = 0; i < single.size(); ++i) EXPECT_EQ(single.materialOf(i), 0);
+}
+
+TEST_F(GlobuleCacheTest, TemperatureRoundTripsExactlyInTheVdbAndPlyCaches) {
+    Globules g = randomGlobules(400, 8);
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        g.temperature.push_back(-40.0f + 1234.5678f * float(i) / float(g.size()));
+    }
+    writeGlobuleVdb(mDir / "hot.vdb", g, {2, 0.04});
+    const Globules vdb = readGlobuleVdb(mDir / "hot.vdb");
+    ASSERT_EQ(vdb.temperature.size(), g.size());
+    for (std::size_t i = 0; i < g.size(); ++i) EXPECT_EQ(vdb.temperature[i], g.temperature[i]);
+
+    writeGlobulePly(mDir / "hot.ply", g);
+    EXPECT_NE(readBytes(mDir / "hot.ply").find("property int material\nproperty float temperature\n"),
+              std::string::npos);
+    const Globules ply = readGlobulePly(mDir / "hot.ply");
+    ASSERT_EQ(ply.temperature.size(), g.size());
+    for (std::size_t i = 0; i < g.size(); ++i) EXPECT_EQ(ply.temperature[i], g.temperature[i]);
+
+    // Without temperature, none is written and none comes back.
+    const Globules cold = randomGlobules(50, 9);
+    writeGlobuleVdb(mDir / "plain.vdb", cold, {1, 0.0});
+    writeGlobulePly(mDir / "plain.ply", cold);
+    EXPECT_TRUE(readGlobuleVdb(mDir / "plain.vdb").temperature.empty());
+    EXPECT_TRUE(readGlobulePly(mDir / "plain.ply").temperature.empty());
+    EXPECT_EQ(readBytes(mDir / "plain.ply").find("temperature"), std::string::npos);
+}
+
+TEST_F(GlobuleCacheTest, NonFiniteTemperatureIsRefusedNamingTheFile) {
+    Globules g = randomGlobules(20, 10);
+    g.temperature.assign(g.size(), 20.0f);
+    g.temperature[7] = std::numeric_limits<float>::quiet_NaN();
+    for (const char* name : {"bad.vdb", "bad.ply"}) {
+        const fs::path path = mDir / name;
+        try {
+            if (path.extension() == ".vdb") {
+                writeGlobuleVdb(path, g, {1, 0.0});
+            } else {
+                writeGlobulePly(path, g);
+            }
+            FAIL() << name << " written with a NaN temperature";
+        } catch (const IoError& e) {
+            EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("temperature"), std::string::npos) << e.what();
+        }
+        EXPECT_FALSE(fs::exists(path));
+    }
+    // A PLY cloud from elsewhere with an infinite temperature.
+    const fs::path path = mDir / "inf.ply";
+    std::ofstream(path) << "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\n"
+                           "property float y\nproperty float z\nproperty float temperature\n"
+                           "end_header\n0 0 0 20\n1 0 0 1e39\n";  // inf as a float
+    try {
+        readGlobulePly(path);
+        FAIL() << "an infinite temperature read";
+    } catch (const IoError& e) {
+        EXPECT_NE(std::string(e.what()).find("vertex 1"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("temperature"), std::string::npos) << e.what();
+    }
 }
 
 TEST_F(GlobuleCacheTest, VdbIsReadableWithPlainOpenVdb) {
