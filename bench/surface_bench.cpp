@@ -90,6 +90,18 @@ void BM_SurfaceFrame(benchmark::State& state) {
 }
 BENCHMARK(BM_SurfaceFrame)->Apply(sizes);
 
+/// The same with a temperature per globule (rising with x) and two materials (by z):
+/// the cost of the "temperature" grid and the mesh's per-vertex temperature and material.
+void BM_SurfaceFrameThermal(benchmark::State& state) {
+    Globules g = benchPuddle(std::size_t(state.range(0)));
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        g.temperature.push_back(20.0f + 10.0f * g.px[i]);
+        g.material.push_back(g.pz[i] < g.pz[g.size() / 2] ? 0 : 1);
+    }
+    for (auto _ : state) benchmark::DoNotOptimize(surfaceGlobules(g, kSettings));
+}
+BENCHMARK(BM_SurfaceFrameThermal)->Apply(sizes);
+
 /// A wall one unit thick across the middle of the puddle (a knife through a tray of
 /// liquid): a deep cut, through the interior as well as the narrow band.
 ColliderSolid puddleKnife(const Globules& g) {

@@ -37,6 +37,13 @@ void checkMesh(const fs::path& path, const TriangleMesh& mesh) {
             throw IoError("cannot write " + path.string() + ": triangle index out of range");
         }
     }
+    for (const VertexAttribute& a : mesh.attributes) {
+        if (a.values.size() != mesh.vertexCount()) {
+            throw IoError("cannot write " + path.string() + ": vertex attribute " + a.name +
+                          " has " + std::to_string(a.values.size()) + " values for " +
+                          std::to_string(mesh.vertexCount()) + " vertices");
+        }
+    }
 }
 
 template <typename T>
@@ -57,6 +64,21 @@ void appendNumber(std::string& out, uint32_t v) {
 }
 
 }  // namespace
+
+const std::vector<VertexAttribute>& knownVertexAttributes() {
+    static const std::vector<VertexAttribute> known = {
+        {"temperature", VertexAttribute::Type::Float32, {}},
+        {"material", VertexAttribute::Type::Int32, {}},
+    };
+    return known;
+}
+
+const VertexAttribute* TriangleMesh::attribute(std::string_view name) const {
+    for (const VertexAttribute& a : attributes) {
+        if (a.name == name) return &a;
+    }
+    return nullptr;
+}
 
 void computeAreaWeightedNormals(TriangleMesh& mesh) {
     const auto& p = mesh.positions;
@@ -91,13 +113,25 @@ void writeMeshPly(const fs::path& path, const TriangleMesh& mesh) {
     for (const char* name : {"x", "y", "z", "nx", "ny", "nz"}) {
         if (hasNormals || name[0] != 'n') vertex.properties.push_back({name, PlyType::Float32});
     }
+    for (const VertexAttribute& a : mesh.attributes) {
+        const bool isInt = a.type == VertexAttribute::Type::Int32;
+        vertex.properties.push_back({a.name, isInt ? PlyType::Int32 : PlyType::Float32});
+    }
     const PlyElement face{"face", mesh.triangleCount(),
                           {{"vertex_indices", PlyType::Int32, PlyType::UInt8}}};
     std::string out = plyHeader("globular surface", {vertex, face});
-    out.reserve(out.size() + mesh.vertexCount() * 24 + mesh.triangleCount() * 13);
+    out.reserve(out.size() + mesh.vertexCount() * (24 + 4 * mesh.attributes.size()) +
+                mesh.triangleCount() * 13);
     for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
         out.append(reinterpret_cast<const char*>(&mesh.positions[3 * v]), 12);
         if (hasNormals) out.append(reinterpret_cast<const char*>(&mesh.normals[3 * v]), 12);
+        for (const VertexAttribute& a : mesh.attributes) {
+            if (a.type == VertexAttribute::Type::Int32) {
+                append(out, int32_t(a.values[v]));
+            } else {
+                append(out, a.values[v]);
+            }
+        }
     }
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
         append(out, uint8_t(3));
@@ -159,6 +193,14 @@ void readVertices(const PlyElement& element, PlyCursor& cursor, TriangleMesh& me
     const int nx = element.find({"nx"}), ny = element.find({"ny"}), nz = element.find({"nz"});
     if (x < 0 || y < 0 || z < 0) throw std::runtime_error("vertex element lacks x, y or z");
     hasNormals = nx >= 0 && ny >= 0 && nz >= 0;
+    std::vector<int> attributeIndex;  // property of each of mesh.attributes
+    for (const VertexAttribute& known : knownVertexAttributes()) {
+        const int k = element.find({known.name.c_str()});
+        if (k < 0 || element.properties[std::size_t(k)].isList()) continue;
+        attributeIndex.push_back(k);
+        mesh.attributes.push_back({known.name, known.type, {}});
+        mesh.attributes.back().values.reserve(element.count);
+    }
     mesh.positions.reserve(3 * element.count);
     if (hasNormals) mesh.normals.reserve(3 * element.count);
     std::vector<double> record(element.properties.size());
@@ -179,6 +221,15 @@ void readVertices(const PlyElement& element, PlyCursor& cursor, TriangleMesh& me
         }
         if (hasNormals) {
             for (int k : {nx, ny, nz}) mesh.normals.push_back(float(record[k]));
+        }
+        for (std::size_t a = 0; a < attributeIndex.size(); ++a) {
+            const double value = record[std::size_t(attributeIndex[a])];
+            if (!std::isfinite(value) || std::abs(value) > 3.4e38) {
+                throw std::runtime_error("vertex " + std::to_string(v) + " has " +
+                                         mesh.attributes[a].name + " " + numberForMessage(value) +
+                                         ": not a finite float");
+            }
+            mesh.attributes[a].values.push_back(float(value));
         }
     }
 }

@@ -6,19 +6,39 @@
 // faces as "list uchar int vertex_indices": what Blender, Houdini and MeshLab import.
 // OBJ files are text with v, vn and f a//a b//b c//c lines (indices from 1).
 // Triangles wind counter-clockwise seen from outside: (b - a) x (c - a) points outward,
-// along the vertex normals.
+// along the vertex normals. Per-vertex scalars (VertexAttribute: the surface stage's
+// temperature and material) follow nx ny nz as PLY vertex properties of their names;
+// OBJ files carry none.
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
+#include <string_view>
 #include <vector>
 
 namespace globular {
+
+/// One scalar per vertex, written as a PLY vertex property named @c name. A vector
+/// quantity is several of them (a velocity would be vx, vy, vz).
+struct VertexAttribute {
+    enum class Type { Float32, Int32 };
+    std::string name;
+    Type type = Type::Float32;
+    std::vector<float> values;  ///< one per vertex; whole numbers when type is Int32
+};
+
+/// The vertex properties readMeshPly keeps as attributes (others are skipped), with the
+/// type each is written as.
+const std::vector<VertexAttribute>& knownVertexAttributes();
 
 struct TriangleMesh {
     std::vector<float> positions;     ///< x y z per vertex, world units
     std::vector<float> normals;       ///< unit x y z per vertex (same count as positions)
     std::vector<uint32_t> triangles;  ///< 3 vertex indices per triangle
+    std::vector<VertexAttribute> attributes;  ///< per-vertex scalars, each vertexCount() long
 
+    /// The attribute named @p name, or null.
+    const VertexAttribute* attribute(std::string_view name) const;
     std::size_t vertexCount() const { return positions.size() / 3; }
     std::size_t triangleCount() const { return triangles.size() / 3; }
     bool empty() const { return triangles.empty(); }
@@ -33,7 +53,8 @@ void writeMeshPly(const std::filesystem::path& path, const TriangleMesh& mesh);
 void writeMeshObj(const std::filesystem::path& path, const TriangleMesh& mesh);
 
 /// Reads a PLY mesh: ascii, binary little or big endian; vertex x y z required, nx ny nz
-/// optional (area-weighted normals are computed when absent); faces as a list property
+/// optional (area-weighted normals are computed when absent), the knownVertexAttributes()
+/// optional (a non-finite one is an error); faces as a list property
 /// "vertex_indices" (or "vertex_index"), polygons split into fans. Other elements and
 /// properties are skipped.
 /// @throw IoError naming @p path and what is wrong (not PLY, truncated, bad index, ...).

@@ -84,7 +84,7 @@ TriangleMesh meshLevelSet(const FloatGrid& levelSet, double adaptivity) {
                mesh.normals[3 * v + 2] == 0;
     }
     if (flat) {
-        TriangleMesh faces{mesh.positions, {}, mesh.triangles};
+        TriangleMesh faces{mesh.positions, {}, mesh.triangles, {}};
         computeAreaWeightedNormals(faces);
         for (std::size_t i = 0; i < mesh.normals.size(); i += 3) {
             if (mesh.normals[i] == 0 && mesh.normals[i + 1] == 0 && mesh.normals[i + 2] == 0) {

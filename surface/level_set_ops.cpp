@@ -5,6 +5,8 @@
 #include <openvdb/tools/LevelSetMeasure.h>
 #include <openvdb/tools/LevelSetRebuild.h>
 #include <openvdb/tools/LevelSetUtil.h>
+#include <openvdb/tools/Prune.h>
+#include <openvdb/tree/LeafManager.h>
 
 #include "surface_grids.h"
 
@@ -79,6 +81,25 @@ FloatGrid::Ptr levelSetToFog(const FloatGrid& levelSet) {
     fog->setGridClass(openvdb::GRID_FOG_VOLUME);
     fog->setName("density");
     return fog;
+}
+
+void keepInside(FloatGrid& grid, const FloatGrid& levelSet, double margin) {
+    const float limit = float(margin);
+    const float background = grid.background();
+    const auto& distances = levelSet.tree();
+    openvdb::tree::LeafManager<openvdb::FloatTree> leaves(grid.tree());
+    // Leaf by leaf: where the level set has no leaf, one tile value decides a whole leaf.
+    leaves.foreach([&](openvdb::FloatTree::LeafNodeType& leaf, std::size_t) {
+        const auto* band = distances.probeConstLeaf(leaf.origin());
+        if (!band && distances.getValue(leaf.origin()) <= limit) return;
+        for (auto it = leaf.beginValueOn(); it; ++it) {
+            if (!band || band->getValue(it.pos()) > limit) {
+                it.setValue(background);
+                it.setValueOff();
+            }
+        }
+    });
+    openvdb::tools::pruneInactive(grid.tree());
 }
 
 }  // namespace globular

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <memory>
 
+#include "errors.h"
 #include "globule_bins.h"
 #include "surface_grids.h"
 
@@ -60,13 +61,22 @@ bool allAbove(const float* sum, float threshold) {
     return result;
 }
 
-/// Adds the globules of the blocks nearOrder()[from...] into @p sum, the 8^3 voxels of
+/// What one block accumulates: the field's sum and, when a per-globule value is
+/// averaged (kMean), sum(w value) beside it, from the same kernel values.
+struct BlockSums {
+    float* sum;                   ///< 8^3 voxels
+    float* weighted = nullptr;    ///< 8^3 voxels; kMean only
+    const float* value = nullptr;  ///< per globule; kMean only
+};
+
+/// Adds the globules of the blocks nearOrder()[from...] into @p out, the 8^3 voxels of
 /// one block. With a finite @p deepAbove, stops after a whole shell of blocks (those at
 /// one distance) once every voxel exceeds it. @return the index in nearOrder() it
 /// stopped at (its size when complete).
-template <KernelType K>
+template <KernelType K, bool kMean>
 std::size_t addGlobules(const GlobuleBins& bins, uint64_t key, const KernelEval<K>& kernel,
-                        float* sum, std::size_t from, float deepAbove) {
+                        const BlockSums& out, std::size_t from, float deepAbove) {
+    float* const sum = out.sum;
     const auto block = GlobuleBins::unpack(key);
     const int64_t ox = block[0] * kDim, oy = block[1] * kDim, oz = block[2] * kDim;
     const auto add = [&](uint32_t i) {
@@ -94,12 +104,18 @@ std::size_t addGlobules(const GlobuleBins& bins, uint64_t key, const KernelEval<
             for (int y = y0; y <= y1; ++y) {
                 const float qxy = qx + (float(y) - cy) * (float(y) - cy) * invR2;
                 if (qxy >= 1.0f) continue;
-                float* row =
-                    sum + (x << (2 * GlobuleBins::kBlockLog2)) + (y << GlobuleBins::kBlockLog2);
+                const int offset =
+                    (x << (2 * GlobuleBins::kBlockLog2)) + (y << GlobuleBins::kBlockLog2);
+                const Row k = kernel(qxy + qz);
                 Row values;
-                std::memcpy(&values, row, sizeof values);
-                values += kernel(qxy + qz);
-                std::memcpy(row, &values, sizeof values);
+                std::memcpy(&values, sum + offset, sizeof values);
+                values += k;
+                std::memcpy(sum + offset, &values, sizeof values);
+                if constexpr (kMean) {
+                    std::memcpy(&values, out.weighted + offset, sizeof values);
+                    values += k * out.value[i];
+                    std::memcpy(out.weighted + offset, &values, sizeof values);
+                }
             }
         }
     };
@@ -115,40 +131,53 @@ std::size_t addGlobules(const GlobuleBins& bins, uint64_t key, const KernelEval<
     return order.size();
 }
 
-/// The leaf of one block summed from nearOrder()[0] (see addGlobules); nullptr when no
-/// voxel of the block lies inside an influence sphere. @p next: where the sum stopped.
-template <KernelType K>
+/// A leaf holding @p values, active where @p activeWhere > 0.
+std::unique_ptr<LeafType> makeLeaf(const openvdb::Coord& origin, const float* values,
+                                   const float* activeWhere) {
+    auto leaf = std::make_unique<LeafType>(origin, 0.0f, false);
+    std::memcpy(leaf->buffer().data(), values, LeafType::SIZE * sizeof(float));
+    for (int v = 0; v < kDim * kDim * kDim; ++v) {
+        if (activeWhere[v] > 0.0f) leaf->setValueOn(openvdb::Index(v));
+    }
+    return leaf;
+}
+
+/// The leaf of one block summed from nearOrder()[0] (see addGlobules), and with kMean the
+/// leaf of its sum(w value) in @p weighted; nullptr when no voxel of the block lies inside
+/// an influence sphere. @p next: where the sum stopped.
+template <KernelType K, bool kMean>
 std::unique_ptr<LeafType> splatBlock(const GlobuleBins& bins, uint64_t key,
-                                     const KernelEval<K>& kernel, float deepAbove,
-                                     std::size_t& next) {
+                                     const KernelEval<K>& kernel, const float* value,
+                                     float deepAbove, std::size_t& next,
+                                     std::unique_ptr<LeafType>& weighted) {
     const auto block = GlobuleBins::unpack(key);
     alignas(sizeof(Row)) float sum[kDim * kDim * kDim] = {};
-    next = addGlobules<K>(bins, key, kernel, sum, 0, deepAbove);
+    alignas(sizeof(Row)) float weightedSum[kMean ? kDim * kDim * kDim : 1] = {};
+    next = addGlobules<K, kMean>(bins, key, kernel, {sum, weightedSum, value}, 0, deepAbove);
     bool touched = false;
     for (float v : sum) touched |= v > 0.0f;
     if (!touched) return nullptr;
 
     const openvdb::Coord origin(int(block[0] * kDim), int(block[1] * kDim), int(block[2] * kDim));
-    auto leaf = std::make_unique<LeafType>(origin, 0.0f, false);
-    float* values = leaf->buffer().data();
-    for (int v = 0; v < kDim * kDim * kDim; ++v) {
-        values[v] = sum[v];
-        if (sum[v] > 0.0f) leaf->setValueOn(openvdb::Index(v));
-    }
-    return leaf;
+    if constexpr (kMean) weighted = makeLeaf(origin, weightedSum, sum);
+    return makeLeaf(origin, sum, sum);
 }
 
-template <KernelType K>
-void splatAll(const GlobuleBins& bins, const MetaballKernel& kernel, float deepAbove,
-              std::vector<std::unique_ptr<LeafType>>& leaves) {
+/// Splats every block into @p leaves and, with kMean, sum(w value) into @p weighted.
+template <KernelType K, bool kMean>
+void splatAll(const GlobuleBins& bins, const MetaballKernel& kernel, const float* value,
+              float deepAbove, std::vector<std::unique_ptr<LeafType>>& leaves,
+              std::vector<std::unique_ptr<LeafType>>& weighted) {
     const KernelEval<K> eval(kernel);
     const auto& blocks = bins.candidateBlocks();
     const std::size_t complete = bins.nearOrder().size();
     std::vector<uint32_t> next(blocks.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 16), [&](auto range) {
+        std::unique_ptr<LeafType> unused;
         for (std::size_t b = range.begin(); b < range.end(); ++b) {
             std::size_t n;
-            leaves[b] = splatBlock<K>(bins, blocks[b], eval, deepAbove, n);
+            leaves[b] = splatBlock<K, kMean>(bins, blocks[b], eval, value, deepAbove, n,
+                                             kMean ? weighted[b] : unused);
             next[b] = uint32_t(n);
         }
     });
@@ -182,12 +211,47 @@ void splatAll(const GlobuleBins& bins, const MetaballKernel& kernel, float deepA
             if (deep) continue;
             LeafType& leaf = *leaves[b];
             float* sum = leaf.buffer().data();
-            addGlobules<K>(bins, blocks[b], eval, sum, next[b], INFINITY);
+            float* weightedSum = kMean ? weighted[b]->buffer().data() : nullptr;
+            addGlobules<K, kMean>(bins, blocks[b], eval, {sum, weightedSum, value}, next[b],
+                                  INFINITY);
             for (int v = 0; v < kDim * kDim * kDim; ++v) {
-                if (sum[v] > 0.0f) leaf.setValueOn(openvdb::Index(v));
+                if (sum[v] > 0.0f) {
+                    leaf.setValueOn(openvdb::Index(v));
+                    if constexpr (kMean) weighted[b]->setValueOn(openvdb::Index(v));
+                }
             }
         }
     });
+}
+
+template <bool kMean>
+void splatWithKernel(const GlobuleBins& bins, const MetaballKernel& kernel, const float* value,
+                     float deepAbove, std::vector<std::unique_ptr<LeafType>>& leaves,
+                     std::vector<std::unique_ptr<LeafType>>& weighted) {
+    switch (kernel.type) {
+        case KernelType::Wyvill:
+            return splatAll<KernelType::Wyvill, kMean>(bins, kernel, value, deepAbove, leaves,
+                                                       weighted);
+        case KernelType::Blinn:
+            return splatAll<KernelType::Blinn, kMean>(bins, kernel, value, deepAbove, leaves,
+                                                      weighted);
+        case KernelType::Murakami:
+            return splatAll<KernelType::Murakami, kMean>(bins, kernel, value, deepAbove, leaves,
+                                                         weighted);
+    }
+}
+
+FloatGrid::Ptr gridOf(std::vector<std::unique_ptr<LeafType>>& leaves, double voxelSize,
+                      const char* name) {
+    auto grid = FloatGrid::create(0.0f);
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(voxelSize));
+    grid->setName(name);
+    // Inserting finished leaves is a pointer hand-over per leaf: serial and cheap.
+    auto& tree = grid->tree();
+    for (auto& leaf : leaves) {
+        if (leaf) tree.addLeaf(leaf.release());
+    }
+    return grid;
 }
 
 }  // namespace
@@ -195,28 +259,34 @@ void splatAll(const GlobuleBins& bins, const MetaballKernel& kernel, float deepA
 FloatGrid::Ptr splatMetaballs(const Globules& globules, const MetaballKernel& kernel,
                               double influence, double voxelSize, double deepAbove) {
     const GlobuleBins bins(globules, voxelSize, influence);
-    std::vector<std::unique_ptr<LeafType>> leaves(bins.candidateBlocks().size());
-    switch (kernel.type) {
-        case KernelType::Wyvill:
-            splatAll<KernelType::Wyvill>(bins, kernel, float(deepAbove), leaves);
-            break;
-        case KernelType::Blinn:
-            splatAll<KernelType::Blinn>(bins, kernel, float(deepAbove), leaves);
-            break;
-        case KernelType::Murakami:
-            splatAll<KernelType::Murakami>(bins, kernel, float(deepAbove), leaves);
-            break;
-    }
+    std::vector<std::unique_ptr<LeafType>> leaves(bins.candidateBlocks().size()), unused;
+    splatWithKernel<false>(bins, kernel, nullptr, float(deepAbove), leaves, unused);
+    return gridOf(leaves, voxelSize, "field");
+}
 
-    auto grid = FloatGrid::create(0.0f);
-    grid->setTransform(openvdb::math::Transform::createLinearTransform(voxelSize));
-    grid->setName("field");
-    // Inserting finished leaves is a pointer hand-over per leaf: serial and cheap.
-    auto& tree = grid->tree();
-    for (auto& leaf : leaves) {
-        if (leaf) tree.addLeaf(leaf.release());
+MeanSplat splatMetaballsWithMean(const Globules& globules, const std::vector<float>& values,
+                                 const MetaballKernel& kernel, double influence,
+                                 double voxelSize, double deepAbove) {
+    if (values.size() != globules.size()) {
+        throw Error("splatMetaballsWithMean: " + std::to_string(values.size()) +
+                    " values for " + std::to_string(globules.size()) + " globules");
     }
-    return grid;
+    const GlobuleBins bins(globules, voxelSize, influence);
+    const std::size_t blocks = bins.candidateBlocks().size();
+    std::vector<std::unique_ptr<LeafType>> leaves(blocks), weighted(blocks);
+    splatWithKernel<true>(bins, kernel, values.data(), float(deepAbove), leaves, weighted);
+    // sum(w value) / sum(w) where the field is; the background elsewhere.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 64), [&](auto range) {
+        for (std::size_t b = range.begin(); b < range.end(); ++b) {
+            if (!leaves[b]) continue;
+            const float* sum = leaves[b]->buffer().data();
+            float* mean = weighted[b]->buffer().data();
+            for (openvdb::Index v = 0; v < LeafType::SIZE; ++v) {
+                mean[v] = sum[v] > 0.0f ? mean[v] / sum[v] : 0.0f;
+            }
+        }
+    });
+    return {gridOf(leaves, voxelSize, "field"), gridOf(weighted, voxelSize, "mean")};
 }
 
 }  // namespace globular

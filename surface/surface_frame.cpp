@@ -7,6 +7,7 @@
 #include "errors.h"
 #include "surface_grids.h"
 #include "vdb_archive.h"
+#include "vertex_attributes.h"
 
 namespace globular {
 
@@ -17,11 +18,22 @@ SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& se
 
     SurfaceFrame frame;
     frame.voxelSize = resolveVoxelSize(settings, globules);
-    openvdb::FloatGrid::Ptr levelSet;
+    const MetaballKernel kernel = settings.metaballKernel();
+    openvdb::FloatGrid::Ptr levelSet, temperature;
     {
-        // Deep inside the liquid the field's exact value is never read: partial sums there.
-        const auto field = splatMetaballs(globules, settings.metaballKernel(), settings.influence,
-                                          frame.voxelSize, settings.isoValue);
+        // Deep inside the liquid the field's exact value is never read: partial sums there
+        // (and the temperature there a mean over the nearer globules).
+        openvdb::FloatGrid::Ptr field;
+        if (globules.temperature.empty()) {
+            field = splatMetaballs(globules, kernel, settings.influence, frame.voxelSize,
+                                   settings.isoValue);
+        } else {
+            MeanSplat splat = splatMetaballsWithMean(globules, globules.temperature, kernel,
+                                                     settings.influence, frame.voxelSize,
+                                                     settings.isoValue);
+            field = splat.field;
+            temperature = splat.mean;
+        }
         frame.fieldLeaves = field->tree().leafCount();
         levelSet = fieldToLevelSet(*field, settings.isoValue, settings.bandWidth);
     }  // the field is the largest grid: free it before the level-set steps
@@ -32,12 +44,28 @@ SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& se
 
     auto grids = std::make_shared<SurfaceGrids>();
     grids->surface = levelSet;
-    // The fog volume and the mesh only read the level set: build them side by side.
-    tbb::parallel_invoke([&] { grids->density = levelSetToFog(*levelSet); },
-                         [&] { frame.mesh = meshLevelSet(*levelSet, settings.adaptivity); });
+    // The fog volume, the temperature and the mesh only read the level set: build them
+    // side by side.
+    tbb::parallel_invoke(
+        [&] { grids->density = levelSetToFog(*levelSet); },
+        [&] {
+            if (!temperature) return;
+            // Two voxels beyond the surface: trilinear lookups at the surface then read no
+            // background.
+            keepInside(*temperature, *levelSet, 2.0 * frame.voxelSize);
+            temperature->setName("temperature");
+            temperature->setGridClass(openvdb::GRID_UNKNOWN);
+            grids->temperature = temperature;
+        },
+        [&] {
+            frame.mesh = meshLevelSet(*levelSet, settings.adaptivity);
+            carryGlobuleAttributes(frame.mesh, globules, kernel, settings.influence,
+                                   frame.voxelSize, attributesOf(globules));
+        });
 
     // Provenance for whoever opens the file in a DCC tool.
-    for (const auto& grid : {grids->surface, grids->density}) {
+    for (const auto& grid : {grids->surface, grids->density, grids->temperature}) {
+        if (!grid) continue;
         grid->insertMeta("globular_kernel", openvdb::StringMetadata(settings.kernel));
         grid->insertMeta("globular_iso_value", openvdb::FloatMetadata(float(settings.isoValue)));
         grid->insertMeta("globular_influence", openvdb::FloatMetadata(float(settings.influence)));
@@ -50,7 +78,9 @@ void writeSurfaceVdb(const std::filesystem::path& path, const SurfaceFrame& fram
     if (!frame.grids || !frame.grids->surface || !frame.grids->density) {
         throw IoError("cannot write " + path.string() + ": the frame has no grids");
     }
-    writeVdbFile(path, openvdb::GridCPtrVec{frame.grids->surface, frame.grids->density});
+    openvdb::GridCPtrVec grids{frame.grids->surface, frame.grids->density};
+    if (frame.grids->temperature) grids.push_back(frame.grids->temperature);
+    writeVdbFile(path, grids);
 }
 
 namespace {
@@ -82,12 +112,14 @@ std::string parseSurfaceFile(const std::filesystem::path& path) {
         if (!file.hasGrid(name)) throw std::runtime_error(std::string("no grid named '") + name + "'");
         grids.push_back(file.readGrid(name));
     }
+    if (file.hasGrid("temperature")) grids.push_back(file.readGrid("temperature"));
     file.close();
     const auto surface = floatGridNamed(grids, "surface");
     if (surface->getGridClass() != openvdb::GRID_LEVEL_SET) {
         throw std::runtime_error("grid 'surface' is not a level set");
     }
     floatGridNamed(grids, "density");
+    if (grids.size() > 2) floatGridNamed(grids, "temperature");
     return encodeVdb(openvdb::GridCPtrVec(grids.begin(), grids.end()), openvdb::MetaMap(),
                      /*seekable=*/false);
 }
@@ -100,7 +132,9 @@ SurfaceGrids readSurfaceVdb(const std::filesystem::path& path) {
         parseVdbInChild(path, kMaxSurfaceFileBytes, [&] { return parseSurfaceFile(path); });
     try {
         const auto grids = decodeStreamedVdb(answer);
-        return SurfaceGrids{floatGridNamed(*grids, "surface"), floatGridNamed(*grids, "density")};
+        SurfaceGrids read{floatGridNamed(*grids, "surface"), floatGridNamed(*grids, "density")};
+        if (grids->size() > 2) read.temperature = floatGridNamed(*grids, "temperature");
+        return read;
     } catch (const std::exception& e) {
         throw IoError("cannot read " + path.string() + ": " + e.what());
     }

@@ -19,15 +19,18 @@ namespace globular {
 struct SurfaceGrids;  // surface_grids.h: the OpenVDB level set and fog volume
 
 struct SurfaceFrame {
-    std::shared_ptr<SurfaceGrids> grids;  ///< "surface" level set and "density" fog
-    TriangleMesh mesh;                    ///< the level set's zero crossing
+    /// "surface" level set, "density" fog and, when the globules carry one, "temperature"
+    std::shared_ptr<SurfaceGrids> grids;
+    /// The level set's zero crossing; per-vertex temperature and material when the
+    /// globules carry them (vertex_attributes.h)
+    TriangleMesh mesh;
     double voxelSize = 0;                 ///< world units, as resolved for this frame
     std::size_t fieldLeaves = 0;          ///< 8^3-voxel leaves the metaball field used
     std::size_t dropletsRemoved = 0;      ///< pieces below droplet_volume
 };
 
 /// Splats, makes the level set, filters, removes droplets, cuts out the colliders, makes
-/// the fog volume and meshes. Uses TBB inside (limit threads with a tbb::task_arena); the
+/// the fog volume (and the temperature grid) and meshes. Uses TBB inside (limit threads with a tbb::task_arena); the
 /// result does not depend on the thread count.
 /// @param colliders the solids where the frame puts them; with settings.subtractColliders
 ///        each is cut out of the liquid (collider_cut.h), so the surface never shows
@@ -38,7 +41,8 @@ struct SurfaceFrame {
 SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& settings,
                              const std::vector<PlacedSolid>& colliders = {});
 
-/// Writes the grids "surface" and "density" of @p frame to one VDB file, atomically.
+/// Writes the grids "surface", "density" and (when made) "temperature" of @p frame to one
+/// VDB file, atomically.
 /// @throw IoError naming @p path.
 void writeSurfaceVdb(const std::filesystem::path& path, const SurfaceFrame& frame);
 

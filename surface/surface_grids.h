@@ -8,6 +8,7 @@
 //   --removeDroplets--> --subtractColliders (collider_cut.h)-->
 //   level set "surface" --levelSetToFog--> fog "density"
 //                       --meshLevelSet---> TriangleMesh
+//   with temperature: splatMetaballsWithMean --> mean --keepInside--> "temperature"
 
 #include <openvdb/openvdb.h>
 
@@ -27,12 +28,17 @@ namespace globular {
 struct SurfaceGrids {
     openvdb::FloatGrid::Ptr surface;  ///< narrow-band level set, class "level set"
     openvdb::FloatGrid::Ptr density;  ///< fog volume in [0, 1], class "fog volume"
+    /// Kernel-weighted mean temperature of the globules inside the liquid (and a couple of
+    /// voxels beyond its surface), background 0, class "unknown"; null when the globules
+    /// carry no temperature.
+    openvdb::FloatGrid::Ptr temperature;
 };
 
-/// Reads the grids "surface" and "density" of a file written by writeSurfaceVdb (or any
-/// VDB file with float grids of those names, "surface" a level set). OpenVDB parses the
-/// file in a child process (isolated_parse.h), so a damaged file is an error, never a
-/// crash. @throw IoError naming @p path and what is wrong.
+/// Reads the grids "surface", "density" and, when present, "temperature" of a file
+/// written by writeSurfaceVdb (or any VDB file with float grids of those names,
+/// "surface" a level set). OpenVDB parses the file in a child process
+/// (isolated_parse.h), so a damaged file is an error, never a crash.
+/// @throw IoError naming @p path and what is wrong.
 SurfaceGrids readSurfaceVdb(const std::filesystem::path& path);
 
 /// The metaball field: the sum over globules of kernel(r^2 / R^2), R = influence * radius.
@@ -50,6 +56,26 @@ SurfaceGrids readSurfaceVdb(const std::filesystem::path& path);
 openvdb::FloatGrid::Ptr splatMetaballs(const Globules& globules, const MetaballKernel& kernel,
                                        double influence, double voxelSize,
                                        double deepAbove = std::numeric_limits<double>::infinity());
+
+/// The field of splatMetaballs and, from the same kernel values in the same pass, the
+/// kernel-weighted mean of a per-globule value: sum(w_i value_i) / sum(w_i) at every
+/// active voxel of the field, 0 elsewhere. Where splatMetaballs leaves partial sums (see
+/// @p deepAbove) the mean is over the nearer globules, still a weighted mean.
+struct MeanSplat {
+    openvdb::FloatGrid::Ptr field;  ///< as splatMetaballs, named "field"
+    openvdb::FloatGrid::Ptr mean;   ///< the same active voxels, named "mean"
+};
+/// @param values one per globule (a temperature).
+/// @throw Error when @p values is not one per globule; as splatMetaballs otherwise.
+MeanSplat splatMetaballsWithMean(const Globules& globules, const std::vector<float>& values,
+                                 const MetaballKernel& kernel, double influence,
+                                 double voxelSize,
+                                 double deepAbove = std::numeric_limits<double>::infinity());
+
+/// Deactivates the voxels of @p grid where @p levelSet (same transform) is above
+/// @p margin (world units), sets them to the background and prunes what is left empty:
+/// @p grid is then defined inside the level set's surface and a margin beyond it.
+void keepInside(openvdb::FloatGrid& grid, const openvdb::FloatGrid& levelSet, double margin);
 
 /// The narrow-band level set (negative inside) of the field's @p isoValue surface,
 /// computed directly from the field (band_distance.cpp): sub-voxel distances where the

@@ -18,3 +18,7 @@ globular_test(collider_cut_tests
 globular_test(damaged_files_test
     SOURCES damaged_files_test.cpp
     LIBS globular_surface OpenVDB::openvdb)
+# Temperature out of the surface stage: the grid and the mesh's per-vertex attributes.
+globular_test(surface_temperature_tests
+    SOURCES surface_temperature_test.cpp
+    LIBS globular_surface OpenVDB::openvdb)
