@@ -5,9 +5,9 @@
 
 namespace globular {
 
-const std::array<Vec3, kRampStops>& rampStops() {
+const RampStops& rampStops() {
     // matplotlib's viridis sampled at 0, 0.1, ..., 1.
-    static const std::array<Vec3, kRampStops> stops = {{
+    static const RampStops stops = {{
         {0.267, 0.005, 0.329},
         {0.283, 0.141, 0.458},
         {0.254, 0.265, 0.530},
@@ -23,8 +23,26 @@ const std::array<Vec3, kRampStops>& rampStops() {
     return stops;
 }
 
-Vec3 rampColor(double t) {
-    const auto& stops = rampStops();
+const RampStops& blackbodyStops() {
+    // Moreland's black body map sampled at 0, 0.1, ..., 1 (CIELAB interpolation of its
+    // five control points, converted back to sRGB).
+    static const RampStops stops = {{
+        {0.000, 0.000, 0.000},
+        {0.189, 0.074, 0.053},
+        {0.353, 0.105, 0.085},
+        {0.530, 0.125, 0.110},
+        {0.708, 0.153, 0.131},
+        {0.809, 0.305, 0.095},
+        {0.896, 0.447, 0.021},
+        {0.919, 0.610, 0.037},
+        {0.932, 0.763, 0.066},
+        {0.984, 0.887, 0.495},
+        {1.000, 1.000, 1.000},
+    }};
+    return stops;
+}
+
+Vec3 rampColor(const RampStops& stops, double t) {
     const double x = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0) * (kRampStops - 1);
     const int i = std::min(int(x), kRampStops - 2);
     const double f = x - i;

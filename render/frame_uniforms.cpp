@@ -50,7 +50,8 @@ void applyFrameUniforms(const gl::Program& p, const FrameUniforms& f) {
     glUniform1i(p.uniform("uColorMode"), f.colorMode);
     setVec3(p, "uBaseColor", f.baseColor);
     setVec3Array(p, "uPalette", f.palette);
-    setVec3Array(p, "uRamp", {rampStops().begin(), rampStops().end()});
+    const RampStops& stops = f.colorMode == 4 ? blackbodyStops() : rampStops();
+    setVec3Array(p, "uRamp", {stops.begin(), stops.end()});
     glUniform2f(p.uniform("uRampRange"), f.rampMin, f.rampMax);
 }
 

@@ -31,7 +31,7 @@ struct FrameUniforms {
     int shadowMapSize = 0;     ///< texels per side this frame
     float texelsPerUnit = 0;   ///< shadow-map texels per world unit
     float shadowBias = 0;      ///< shadow-map depth units
-    int colorMode = 0;         ///< 0 constant, 1 speed, 2 height, 3 material
+    int colorMode = 0;         ///< 0 constant, 1 speed, 2 height, 3 material, 4 temperature
     std::vector<Vec3> palette = std::vector<Vec3>(16);  ///< linear, by material index
     Vec3 baseColor;            ///< linear
     float rampMin = 0, rampMax = 1;

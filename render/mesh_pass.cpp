@@ -14,6 +14,7 @@ MeshPass::MeshPass()
       mVertexArray(gl::makeVertexArray()),
       mPositions(gl::makeBuffer()),
       mNormals(gl::makeBuffer()),
+      mValues(gl::makeBuffer()),
       mIndices(gl::makeBuffer()) {}
 
 void MeshPass::upload(const MeshView& mesh) {
@@ -40,6 +41,16 @@ void MeshPass::upload(const MeshView& mesh) {
     } else {
         glDisableVertexAttribArray(1);
         glVertexAttrib3f(1, 0, 0, 0);  // the fragment shader then uses face normals
+    }
+    if (mesh.values) {
+        glBindBuffer(GL_ARRAY_BUFFER, mValues.id());
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.vertexCount * sizeof(float)), mesh.values,
+                     GL_STREAM_DRAW);
+        glVertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
+        glEnableVertexAttribArray(2);
+    } else {
+        glDisableVertexAttribArray(2);
+        glVertexAttrib1f(2, 0);
     }
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mIndices.id());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indexCount * sizeof(uint32_t)), mesh.triangles,

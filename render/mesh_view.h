@@ -1,7 +1,7 @@
 #pragma once
 // The renderer's mesh input: a view of arrays owned by the caller, so the surfacing
-// stage's TriangleMesh (surface/mesh.h: positions, normals, triangles) is drawn without
-// a copy. @code MeshView view{m.positions.data(), m.normals.data(), m.positions.size() / 3,
+// stage's TriangleMesh (core/mesh.h: positions, normals, triangles, attributes) is drawn
+// without a copy. @code MeshView view{m.positions.data(), m.normals.data(), m.positions.size() / 3,
 //                             m.triangles.data(), m.triangles.size() / 3, true}; @endcode
 
 #include <cstddef>
@@ -18,6 +18,9 @@ struct MeshView {
     /// Closed and wound counter-clockwise seen from outside (as the surface stage writes
     /// its meshes): back faces are then skipped. False: every face is drawn, two-sided.
     bool closed = false;
+    /// One value per vertex that color_by = material or temperature colours by (a
+    /// TriangleMesh attribute), or null: 0 everywhere.
+    const float* values = nullptr;
 };
 
 }  // namespace globular

@@ -27,10 +27,16 @@ void checkRender(const RenderSettings& s, const KeyName& name) {
         throw SceneError(name("samples") + " = " + std::to_string(n) +
                          ": must be 1, 2, 4, 8 or 16");
     }
-    if ((s.colorBy == "speed" || s.colorBy == "material") && s.mode == "surface") {
-        throw SceneError(name("color_by") + " = \"" + s.colorBy +
-                         "\": needs mode = \"spheres\" (the surface mesh carries neither "
-                         "velocities nor materials); use \"height\" or \"constant\"");
+    if (s.colorBy == "speed" && s.mode == "surface") {
+        throw SceneError(name("color_by") +
+                         " = \"speed\": needs mode = \"spheres\" (the surface mesh carries "
+                         "no velocities); use \"height\", \"material\", \"temperature\" or "
+                         "\"constant\"");
+    }
+    if (!(s.temperatureHigh > s.temperatureLow)) {
+        throw SceneError(name("temperature_high") + " = " + numberForMessage(s.temperatureHigh) +
+                         ": must be above temperature_low = " +
+                         numberForMessage(s.temperatureLow));
     }
     if (s.rampMax < s.rampMin) {
         throw SceneError(name("ramp_max") + " = " + std::to_string(s.rampMax) +
@@ -61,14 +67,21 @@ void RenderSettings::describe(SettingsSection& s) {
              "spheres: each globule a shaded sphere of its radius; surface: the surfacing "
              "stage's mesh");
     s.integer("samples", samples, 1, 16, "multisample anti-aliasing samples per pixel (1 = off)");
-    s.choice("color_by", colorBy, {"constant", "speed", "height", "material"},
-             "colour by the constant color, by speed or height through a colour ramp, or "
-             "by each globule's [[material]] color");
+    s.choice("color_by", colorBy, {"constant", "speed", "height", "material", "temperature"},
+             "colour by the constant color, by speed or height through a colour ramp, by "
+             "each globule's [[material]] color, or by temperature through a blackbody ramp "
+             "(surface mode: the mesh's per-vertex material or temperature)");
     s.vec3("color", color, kUnit, "base colour, sRGB in [0, 1]");
     s.number("ramp_min", rampMin, NumberRange::any(),
              "speed (units/s) or height (units) mapped to the ramp's start");
     s.number("ramp_max", rampMax, NumberRange::any(),
              "value mapped to the ramp's end; equal to ramp_min: the animation's own range");
+    s.number("temperature_low", temperatureLow, NumberRange::any(),
+             "temperature at the black end of the blackbody ramp (color_by = \"temperature\"), "
+             "degrees of the scene's [thermal] temperatures");
+    s.number("temperature_high", temperatureHigh, NumberRange::any(),
+             "temperature at the white end of the blackbody ramp; must be above "
+             "temperature_low");
     s.number("specular", specular, kUnit, "strength of the key light's highlight, 0 = matte");
     s.number("ambient", ambient, kUnit, "sky light as a fraction of the base colour");
     s.flag("ground", ground, "draw the ground plane (at [ground] height)");

@@ -18,10 +18,12 @@ struct RenderSettings {
     int64_t height = 720;                ///< pixels
     std::string mode = "spheres";        ///< spheres | surface
     int64_t samples = 4;                 ///< multisample anti-aliasing samples per pixel, 1 = off
-    std::string colorBy = "constant";    ///< constant | speed | height | material
+    std::string colorBy = "constant";    ///< constant | speed | height | material | temperature
     Vec3 color{0.16, 0.42, 0.82};        ///< base colour (sRGB), used by color_by = constant
     double rampMin = 0;                  ///< speed (units/s) or height (units) at the ramp's start
     double rampMax = 0;                  ///< ... and end; rampMin == rampMax: the animation's range
+    double temperatureLow = 0;           ///< temperature at the blackbody ramp's black end
+    double temperatureHigh = 100;        ///< ... and at its white end (> temperatureLow)
     double specular = 0.35;              ///< strength of the key light's highlight, 0 = matte
     double ambient = 0.30;               ///< sky light, as a fraction of the base colour
     bool ground = true;                  ///< draw the ground plane
@@ -36,7 +38,8 @@ struct RenderSettings {
     double movieFps = 0;                 ///< movie frame rate, 0 = the simulation's fps
 
     void describe(SettingsSection& section);
-    /// @throw SceneError naming the key (e.g. color_by = speed with mode = surface).
+    /// @throw SceneError naming the key (e.g. color_by = speed with mode = surface,
+    ///        temperature_high not above temperature_low).
     void validate() const;
     /// As validate(), with the key's file, line and column from @p section.
     void validate(const SettingsSection& section) const;

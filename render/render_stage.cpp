@@ -38,11 +38,29 @@ TriangleMesh readMesh(const RenderJob& job, const fs::path& outDir, int frame) {
     return readSurfaceMesh(meshPath(outDir, frame, job.meshFormat), job.meshFormat);
 }
 
-MeshView viewOf(const TriangleMesh& m) {
-    // The surface stage's meshes are closed level sets wound outward (surface/mesh.h).
-    return {m.positions.data(), m.normals.size() == m.positions.size() ? m.normals.data() : nullptr,
-            m.vertexCount(),    m.triangles.data(),
-            m.triangleCount(),  true};
+/// The mesh and, for color_by = material or temperature, its attribute of that name.
+MeshView viewOf(const TriangleMesh& m, const std::string& colorBy) {
+    const VertexAttribute* values =
+        colorBy == "material" || colorBy == "temperature" ? m.attribute(colorBy) : nullptr;
+    // The surface stage's meshes are closed level sets wound outward (core/mesh.h).
+    return {m.positions.data(),
+            m.normals.size() == m.positions.size() ? m.normals.data() : nullptr,
+            m.vertexCount(),
+            m.triangles.data(),
+            m.triangleCount(),
+            true,
+            values && values->values.size() == m.vertexCount() ? values->values.data() : nullptr};
+}
+
+/// color_by = temperature needs temperatures: a scene without [thermal] has none.
+/// @throw SceneError naming the file that lacks them.
+void checkTemperature(const RenderJob& job, bool present, const fs::path& file) {
+    if (job.render.colorBy != "temperature" || present) return;
+    throw SceneError("[render] key 'color_by' = \"temperature\": " + file.string() +
+                     " carries no temperature (the scene has no [thermal] section" +
+                     (job.render.mode == "surface"
+                          ? ", or the mesh was written as obj or before temperature existed)"
+                          : ")"));
 }
 
 void validate(const RenderJob& job, const StageContext& ctx) {
@@ -164,12 +182,17 @@ void runRenderStage(const RenderJob& job, const StageContext& ctx) {
         Image image;
         if (job.render.mode == "surface") {
             const TriangleMesh mesh = readMesh(job, ctx.outDir, f);
+            // An empty frame (nothing emitted yet) has nothing to colour.
+            checkTemperature(job, mesh.attribute("temperature") || mesh.vertexCount() == 0,
+                             meshPath(ctx.outDir, f, job.meshFormat));
             checkRenderMemory(job.render,
                               estimateMeshBytes(mesh.vertexCount(), mesh.triangleCount()),
                               available, "frame " + std::to_string(f));
-            image = renderer.drawMesh(viewOf(mesh), frameSetup);
+            image = renderer.drawMesh(viewOf(mesh, job.render.colorBy), frameSetup);
         } else {
             const Globules globules = readCache(ctx.outDir, f);
+            checkTemperature(job, !globules.temperature.empty() || globules.empty(),
+                             cacheVdbPath(ctx.outDir, f));
             checkRenderMemory(job.render, estimateSphereBytes(globules.size()), available,
                               "frame " + std::to_string(f));
             image = renderer.drawSpheres(globules, frameSetup);

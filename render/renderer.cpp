@@ -170,14 +170,19 @@ struct Renderer::Impl {
             f.shadowBias = float(0.5 * f.shadowTexel / (reach - 0.5 * radius));
         }
         const std::string& by = s.render.colorBy;
-        f.colorMode = by == "speed" ? 1 : by == "height" ? 2 : by == "material" ? 3 : 0;
+        f.colorMode = by == "speed"         ? 1
+                      : by == "height"      ? 2
+                      : by == "material"    ? 3
+                      : by == "temperature" ? 4
+                                            : 0;
         f.baseColor = srgbToLinear(s.render.color);
         for (std::size_t k = 0; k < f.palette.size(); ++k) {
             f.palette[k] = k < s.materialColors.size() ? srgbToLinear(s.materialColors[k])
                                                        : f.baseColor;
         }
-        f.rampMin = float(s.ramp.min);
-        f.rampMax = float(s.ramp.max);
+        // Temperature has its own fixed range: a hot and a cold frame must look so.
+        f.rampMin = float(f.colorMode == 4 ? s.render.temperatureLow : s.ramp.min);
+        f.rampMax = float(f.colorMode == 4 ? s.render.temperatureHigh : s.ramp.max);
         return f;
     }
 
@@ -193,7 +198,7 @@ struct Renderer::Impl {
             const TriangleMesh m = s.props[k].seeThrough ? cutaway(s.props[k].mesh, s.camera.position)
                                                          : s.props[k].mesh;
             props[k].upload({m.positions.data(), m.normals.data(), m.vertexCount(),
-                             m.triangles.data(), m.triangleCount(), true});
+                             m.triangles.data(), m.triangleCount(), true, nullptr});
         }
         FrameUniforms grey = f;  // the set in a neutral light grey, whatever colours the content
         grey.colorMode = 0;
@@ -279,11 +284,18 @@ Image Renderer::drawSpheres(const Globules& globules, const FrameSetup& setup) {
             pass.drawShading(f, target);
         }
     };
+    using Value = detail::SpherePass::Value;
+    const std::string& by = s.render.colorBy;
+    if (by == "temperature" && globules.temperature.size() != globules.size()) {
+        throw Error("render: color_by = \"temperature\" but the globules carry no temperature "
+                    "(the scene has no [thermal] section)");
+    }
     return im.draw(s, own.box,
                    Content{*im.spheres, im.target, globules,
-                           s.render.colorBy == "speed"      ? detail::SpherePass::Value::Speed
-                           : s.render.colorBy == "material" ? detail::SpherePass::Value::Material
-                                                            : detail::SpherePass::Value::None});
+                           by == "speed"         ? Value::Speed
+                           : by == "material"    ? Value::Material
+                           : by == "temperature" ? Value::Temperature
+                                                 : Value::None});
 }
 
 Image Renderer::drawMesh(const MeshView& mesh, const FrameSetup& setup) {
@@ -291,6 +303,10 @@ Image Renderer::drawMesh(const MeshView& mesh, const FrameSetup& setup) {
     Impl& im = *mImpl;
     if (!im.mesh) im.mesh.emplace();
     FrameSetup s = setup;
+    if (s.render.colorBy == "temperature" && !mesh.values && mesh.vertexCount > 0) {
+        throw Error("render: color_by = \"temperature\" but the mesh carries no per-vertex "
+                    "temperature");
+    }
     SceneExtent own;
     if (s.content.empty || (s.render.colorBy != "constant" && s.ramp.empty)) {
         own.addPoints(mesh.positions, mesh.vertexCount);

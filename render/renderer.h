@@ -35,7 +35,7 @@ struct FrameSetup {
     /// so they do not change from frame to frame. Empty: the frame's own extent.
     Bounds3 content;
     /// Values at the ends of the colour ramp (color_by speed or height). Empty: the
-    /// frame's own range.
+    /// frame's own range. (Temperature: always render.temperatureLow and High.)
     ValueRange ramp;
     /// The set around the content (colliders), drawn in a neutral grey.
     std::vector<Prop> props;
@@ -55,9 +55,12 @@ class Renderer {
     Renderer& operator=(const Renderer&) = delete;
 
     /// Each globule a sphere of its radius. Non-finite globules are skipped.
+    /// @throw Error for color_by = temperature when the globules carry none.
     Image drawSpheres(const Globules& globules, const FrameSetup& setup);
-    /// The mesh, smooth-shaded with its normals (faceted without).
-    /// @throw Error when a triangle index is out of range.
+    /// The mesh, smooth-shaded with its normals (faceted without); color_by = material or
+    /// temperature reads mesh.values (material 0 without).
+    /// @throw Error when a triangle index is out of range, or for color_by = temperature
+    ///        without mesh.values.
     Image drawMesh(const MeshView& mesh, const FrameSetup& setup);
 
     /// Occlusion culling of hidden spheres before drawing (on by default). The image is

@@ -8,7 +8,8 @@ const char* const kVersion = "#version 420 core\n#define MAX_LIGHTS 8\n";
 
 // Maps a per-globule or per-vertex value to a base colour (linear light).
 const char* const kColorLibrary = R"(
-uniform int uColorMode;     // 0 constant, 1 by value (speed), 2 by height, 3 by material
+uniform int uColorMode;     // 0 constant, 1 by value (speed), 2 by height, 3 by material,
+                            // 4 by value (temperature; uRamp holds the blackbody stops)
 uniform vec3 uPalette[16];  // linear, by material (value = the material's index)
 uniform vec3 uBaseColor;    // linear
 uniform vec3 uRamp[11];     // sRGB stops, evenly spaced
@@ -85,6 +86,7 @@ std::string meshVertex() {
     return vertex(R"(
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;  // (0, 0, 0) when the mesh has none
+layout(location = 2) in float aValue;  // material or temperature; 0 when the mesh has none
 uniform mat4 uViewProj;
 out vec3 vWorld;
 out vec3 vNormal;
@@ -92,7 +94,7 @@ out vec3 vAlbedo;
 void main() {
     vWorld = aPosition;
     vNormal = aNormal;
-    vAlbedo = albedoFor(aPosition.y);
+    vAlbedo = albedoFor(uColorMode == 2 ? aPosition.y : aValue);
     gl_Position = uViewProj * vec4(aPosition, 1.0);
 }
 )");

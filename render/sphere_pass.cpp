@@ -121,6 +121,10 @@ void SpherePass::upload(const Globules& g, Value value, const FrameUniforms& f) 
         speed[i] = std::sqrt(g.vx[i] * g.vx[i] + g.vy[i] * g.vy[i] + g.vz[i] * g.vz[i]);
     }
     for (std::size_t i = 0; value == Value::Material && i < n; ++i) speed[i] = g.materialOf(i);
+    if (value == Value::Temperature) {
+        if (g.temperature.size() != n) throw Error("render: the globules carry no temperature");
+        std::copy(g.temperature.begin(), g.temperature.end(), speed.begin());
+    }
     uploadFloats(mArrays[kSpeed], speed.data(), speed.size());
     for (int i = kX; i <= kSpeed; ++i) {
         glBindTexture(GL_TEXTURE_BUFFER, mTextures[i].id());

@@ -35,7 +35,7 @@ class SpherePass {
     /// Uploads positions, radii and (when @p withSpeed) speeds, and picks the spheres too
     /// big for a sprite in @p frame's camera or light view.
     /// The value each sphere carries to the shader (its colour by color_by).
-    enum class Value { None, Speed, Material };
+    enum class Value { None, Speed, Material, Temperature };
     void upload(const Globules& globules, Value value, const FrameUniforms& frame);
     void drawShadow(const FrameUniforms& frame) const;
     void drawVisibility(const FrameUniforms& frame, const FrameTarget& target) const;
@@ -63,7 +63,7 @@ class SpherePass {
     float mMaxSprite;  // pixels or texels; bigger spheres are drawn as squares
     gl::Program mVisibilityPoints, mVisibilitySquares, mShade, mShadowPoints, mShadowSquares;
     gl::VertexArray mPointArray, mSquareArray, mTileArray;
-    std::array<gl::Buffer, 5> mArrays;     // x, y, z, radius, speed
+    std::array<gl::Buffer, 5> mArrays;     // x, y, z, radius, value (speed, material or temperature)
     std::array<gl::Texture, 5> mTextures;  // the same, as buffer textures
     gl::Buffer mCorners, mSquares, mSquareIds, mTiles;
     gl::Buffer mVisibleIndices, mShadowIndices;  // element arrays of the culled sprites

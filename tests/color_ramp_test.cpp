@@ -43,5 +43,32 @@ TEST(ColorRamp, LightnessRisesMonotonically) {
     }
 }
 
+TEST(ColorRamp, BlackbodyRunsFromBlackThroughRedAndYellowToWhite) {
+    EXPECT_EQ(blackbodyColor(0), (Vec3{0, 0, 0}));
+    EXPECT_EQ(blackbodyColor(1), (Vec3{1, 1, 1}));
+    EXPECT_EQ(blackbodyColor(-50), blackbodyColor(0));
+    EXPECT_EQ(blackbodyColor(50), blackbodyColor(1));
+    const Vec3 red = blackbodyColor(0.4), orange = blackbodyColor(0.6),
+               yellow = blackbodyColor(0.85);
+    EXPECT_GT(red.x, 2 * red.y);  // red: little green or blue
+    EXPECT_GT(red.x, 2 * red.z);
+    EXPECT_GT(orange.y, orange.z);  // orange: green rising, blue low
+    EXPECT_GT(orange.x, orange.y);
+    EXPECT_GT(yellow.y, 0.7);  // yellow: red and green high, blue low
+    EXPECT_LT(yellow.z, 0.5 * yellow.y);
+}
+
+TEST(ColorRamp, BlackbodyLuminanceRisesMonotonically) {
+    // Hotter is always brighter, also between the stops (interpolated in sRGB).
+    double previous = -1;
+    for (int k = 0; k <= 1000; ++k) {
+        const Vec3 c = srgbToLinear(blackbodyColor(k / 1000.0));
+        const double luminance = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+        EXPECT_GT(luminance, previous) << "t = " << k / 1000.0;
+        previous = luminance;
+    }
+    EXPECT_NEAR(previous, 1.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace globular

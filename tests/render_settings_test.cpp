@@ -79,6 +79,29 @@ TEST(RenderSettings, ValidateNamesTheKeyAndPlace) {
     }
 }
 
+TEST(RenderSettings, TemperatureRangeMustRiseAndSurfaceModeTakesMaterialAndTemperature) {
+    RenderSettings s;
+    s.colorBy = "temperature";
+    EXPECT_NO_THROW(s.validate());
+    s.temperatureLow = 800;
+    s.temperatureHigh = 800;
+    try {
+        s.validate();
+        FAIL() << "temperature_high equal to temperature_low accepted";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("[render] key 'temperature_high'"),
+                  std::string::npos)
+            << e.what();
+    }
+    s.temperatureHigh = 1500;
+    s.mode = "surface";
+    EXPECT_NO_THROW(s.validate());
+    s.colorBy = "material";
+    EXPECT_NO_THROW(s.validate());
+    s.colorBy = "speed";
+    EXPECT_THROW(s.validate(), SceneError);
+}
+
 TEST(CameraSettings, DefaultIsAutomaticAndAGivenCameraIsNot) {
     CameraSettings c;
     EXPECT_TRUE(c.automatic());

@@ -93,6 +93,56 @@ TEST(Renderer, ColorByMaterialGivesEachMaterialItsColour) {
     expectColor(image, kWidth / 2 + offset, kHeight / 2, {51, 153, 204}, 8);
 }
 
+std::array<int, 3> srgbBytes(Vec3 c) {
+    return {int(std::lround(255 * c.x)), int(std::lround(255 * c.y)), int(std::lround(255 * c.z))};
+}
+
+TEST(Renderer, ColorByTemperatureGivesHotAndColdTheirBlackbodyColours) {
+    Renderer renderer(kWidth, kHeight, 1);
+    FrameSetup setup = flatSetup();
+    setup.render.colorBy = "temperature";
+    setup.render.temperatureLow = 200;
+    setup.render.temperatureHigh = 1200;
+    Globules g;
+    g.add({-3, 0, 0}, {}, 1, 1, 0);
+    g.add({3, 0, 0}, {}, 1, 1, 1);
+    g.temperature = {450, 1050};  // t = 0.25 (dark red) and 0.85 (yellow)
+    const Image image = renderer.drawSpheres(g, setup);
+    const int offset = int(std::lround(0.3 * kHeight / 2));
+    const auto cold = rgb(image, kWidth / 2 - offset, kHeight / 2);
+    const auto hot = rgb(image, kWidth / 2 + offset, kHeight / 2);
+    expectColor(image, kWidth / 2 - offset, kHeight / 2, srgbBytes(blackbodyColor(0.25)), 8);
+    expectColor(image, kWidth / 2 + offset, kHeight / 2, srgbBytes(blackbodyColor(0.85)), 8);
+    EXPECT_GT(hot[1], cold[1] + 100);  // the hot one is far brighter
+
+    // Globules without temperature cannot be coloured by it.
+    g.temperature.clear();
+    EXPECT_THROW(renderer.drawSpheres(g, setup), Error);
+}
+
+TEST(Renderer, MeshIsColouredByItsPerVertexTemperatureOrMaterial) {
+    Renderer renderer(kWidth, kHeight, 1);
+    const float positions[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+    const float normals[] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    const uint32_t triangles[] = {0, 1, 2, 0, 2, 3};
+    const float hot[] = {90, 90, 90, 90};
+    FrameSetup setup = flatSetup();
+    setup.render.colorBy = "temperature";  // 0 to 100 by default
+    MeshView mesh{positions, normals, 4, triangles, 2, true, hot};
+    expectColor(renderer.drawMesh(mesh, setup), kWidth / 2, kHeight / 2,
+                srgbBytes(blackbodyColor(0.9)), 2);
+    mesh.values = nullptr;
+    EXPECT_THROW(renderer.drawMesh(mesh, setup), Error);
+
+    const float second[] = {1, 1, 1, 1};
+    setup.render.colorBy = "material";
+    setup.materialColors = {{0.8, 0.3, 0.2}, {0.2, 0.6, 0.8}};
+    mesh.values = second;
+    expectColor(renderer.drawMesh(mesh, setup), kWidth / 2, kHeight / 2, {51, 153, 204}, 2);
+    mesh.values = nullptr;  // no attribute: material 0
+    expectColor(renderer.drawMesh(mesh, setup), kWidth / 2, kHeight / 2, kBase, 2);
+}
+
 TEST(Renderer, OneSphereIsADiscOfItsColourAtItsProjectedPlace) {
     Renderer renderer(kWidth, kHeight, 4);
     const FrameSetup setup = flatSetup();
