@@ -61,6 +61,58 @@ void BM_SimulationStepTwoMaterials(benchmark::State& state) {
     runSteps(state, setup);
 }
 
+/// The block with temperature, one material: a melting range [40, 60] whose solid phase
+/// is stiffer (b1 2.5, the same windows), the globules at 80 (liquid), conduction, Newton
+/// cooling and a hot ground.
+void BM_SimulationStepThermal(benchmark::State& state) {
+    SimulationSetup setup = liquidBlock(state.range(0));
+    MaterialSettings& m = setup.material;
+    m.phases = true;
+    m.tSolid = 40;
+    m.tLiquid = 60;
+    m.solid = m.liquid = m;
+    m.solid.b1 = 2.5;
+    setup.thermal.enabled = true;
+    setup.thermal.cooling = 0.1;
+    setup.thermal.groundTemperature = 100;
+    setup.thermal.groundTransfer = 1;
+    setup.emitters[0].temperature = 80;
+    runSteps(state, setup);
+}
+
+/// The two materials again, now with temperature (issue 14: under 20% extra per step):
+/// each material has a melting range [40, 60] whose solid phase is stiffer (b1 2.5, the
+/// same windows, so the reach is the step's own), the left half at 80 and the right at 20
+/// (pairs blend where they meet), conduction, Newton cooling and a hot ground.
+void BM_SimulationStepThermalTwoMaterials(benchmark::State& state) {
+    SimulationSetup setup = liquidBlock(state.range(0));
+    setup.material.name = "liquid";
+    MaterialSettings powder;
+    powder.name = "powder";
+    powder.preset = "powder";
+    for (MaterialSettings* m : {&setup.material, &powder}) {
+        m->phases = true;
+        m->tSolid = 40;
+        m->tLiquid = 60;
+        m->solid = m->liquid = *m;
+        m->solid.b1 = 2.5;
+    }
+    setup.otherMaterials = {powder};
+    setup.thermal.enabled = true;
+    setup.thermal.cooling = 0.1;
+    setup.thermal.groundTemperature = 100;
+    setup.thermal.groundTransfer = 1;
+    EmitterSettings left = setup.emitters[0], right = left;
+    const double middle = 0.5 * (left.min.x + left.max.x);
+    left.max.x = right.min.x = middle;
+    left.count = right.count = state.range(0) / 2;
+    left.temperature = 80;
+    right.temperature = 20;
+    right.material = "powder";
+    setup.emitters = {left, right};
+    runSteps(state, setup);
+}
+
 void BM_SimulationStepAllPairs(benchmark::State& state) {
     runSteps(state, liquidBlock(state.range(0), "all_pairs"));
 }
@@ -80,6 +132,18 @@ BENCHMARK(BM_SimulationStepMeshCollider)
     ->UseRealTime()
     ->MinTime(2.0);
 BENCHMARK(BM_SimulationStepTwoMaterials)
+    ->ArgsProduct({{100000}, {1, 2}})
+    ->ArgNames({"globules", "threads"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+BENCHMARK(BM_SimulationStepThermal)
+    ->ArgsProduct({{100000}, {1, 2}})
+    ->ArgNames({"globules", "threads"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+BENCHMARK(BM_SimulationStepThermalTwoMaterials)
     ->ArgsProduct({{100000}, {1, 2}})
     ->ArgNames({"globules", "threads"})
     ->Unit(benchmark::kMillisecond)

@@ -43,7 +43,7 @@ std::size_t sizeOr(const std::vector<std::pair<std::string, std::size_t>>& sizes
 
 /// What a material and the radii derive: the reach of the force (the neighbour grid's
 /// cell) and b2 must be usable numbers, or the error would blame the grid.
-void checkNeighbourReach(const MaterialSettings& m, const SettingsSection& material,
+void checkNeighbourReach(const ForceConstants& m, const SettingsSection& material,
                          const Scene& scene, const SceneSections& sections) {
     const double window = std::max(m.resolvedCr(), m.resolvedCd());
     const std::string windowKeys = material.describeKey("r0") + ", " +
@@ -77,6 +77,15 @@ void checkNeighbourReach(const Scene& scene, const SceneSections& sections) {
                             scene, sections);
     }
     checkNeighbourReach(scene.material, *place, scene, sections);
+    const std::vector<MaterialSettings> materials = scene.simulationSetup().materials();
+    for (std::size_t k = 0; k < materials.size(); ++k) {
+        for (const auto& [which, constants] :
+             {std::pair{"solid", &materials[k].solid}, std::pair{"liquid", &materials[k].liquid}}) {
+            if (const SettingsSection* phase = sections.phase(k, which)) {
+                checkNeighbourReach(*constants, *phase, scene, sections);
+            }
+        }
+    }
 }
 
 }  // namespace
@@ -86,8 +95,8 @@ std::filesystem::path Scene::directory() const {
 }
 
 SimulationSetup Scene::simulationSetup() const {
-    return SimulationSetup{simulation, material,       ground,       emitters, directory(),
-                           colliders,  otherMaterials, materialPairs};
+    return SimulationSetup{simulation, material,       ground,        emitters, directory(),
+                           colliders,  otherMaterials, materialPairs, thermal,  heaters};
 }
 
 ColliderScene Scene::colliderScene() const {
@@ -116,6 +125,15 @@ std::vector<SettingsSection>* SceneSections::array(const std::string& name) {
     return const_cast<std::vector<SettingsSection>*>(std::as_const(*this).array(name));
 }
 
+const SettingsSection* SceneSections::phase(std::size_t k, const std::string& which) const {
+    const std::string single = "material." + which;
+    const std::string element = "material[" + std::to_string(k) + "]." + which;
+    for (const SettingsSection& s : phases) {
+        if (s.name() == element || (k == 0 && s.name() == single)) return &s;
+    }
+    return nullptr;
+}
+
 std::vector<std::string> SceneSections::names() const {
     std::vector<std::string> out;
     for (const auto& s : singles) out.push_back(s.name());
@@ -130,6 +148,7 @@ SceneSections bindSections(Scene& scene,
     scene.lights.resize(sizeOr(arraySizes, "light", std::max<std::size_t>(1, scene.lights.size())));
     scene.colliders.resize(sizeOr(arraySizes, "collider", scene.colliders.size()));
     scene.materialPairs.resize(sizeOr(arraySizes, "material_pair", scene.materialPairs.size()));
+    scene.heaters.resize(sizeOr(arraySizes, "heater", scene.heaters.size()));
     // [material], or [[material]] sections: the first binds to `material`, the rest to
     // `otherMaterials`.
     const std::size_t materials = sizeOr(arraySizes, "material", 0);
@@ -143,6 +162,7 @@ SceneSections bindSections(Scene& scene,
     sections.singles.push_back(describeSection("surface", scene.surface));
     sections.singles.push_back(describeSection("render", scene.render));
     sections.singles.push_back(describeSection("camera", scene.camera));
+    sections.singles.push_back(describeSection("thermal", scene.thermal));
     sections.arrays.emplace_back("emitter", describeArray("emitter", scene.emitters));
     sections.arrays.emplace_back("light", describeArray("light", scene.lights));
     sections.arrays.emplace_back("collider", describeArray("collider", scene.colliders));
@@ -156,6 +176,7 @@ SceneSections bindSections(Scene& scene,
     }
     sections.arrays.emplace_back("material_pair",
                                  describeArray("material_pair", scene.materialPairs));
+    sections.arrays.emplace_back("heater", describeArray("heater", scene.heaters));
     return sections;
 }
 
@@ -219,12 +240,51 @@ void checkMaterialNames(const Scene& scene, const SceneSections& sections) {
     }
 }
 
+/// Keys that only mean something with temperature: set while [thermal] is off, they are
+/// an error, not silently ignored.
+static void checkThermalKeys(const Scene& scene, const SceneSections& sections) {
+    if (scene.thermal.enabled) return;
+    const auto refuse = [&](const SettingsSection& section, const std::string& key) {
+        if (section.placeOf(key)) {
+            throw SceneError(section.describeKey(key) +
+                             ": temperature is off; set [thermal] enabled = true");
+        }
+    };
+    for (const std::string key : {"ambient", "cooling", "reference", "ground_temperature",
+                                  "ground_transfer"}) {
+        refuse(*sections.single("thermal"), key);
+    }
+    for (const SettingsSection* m : materialSections(sections)) {
+        for (const std::string key : {"heat_capacity", "conductivity", "expansion", "t_solid", "t_liquid"}) {
+            refuse(*m, key);
+        }
+    }
+    if (!sections.phases.empty()) {
+        throw SceneError("[" + sections.phases.front().name() +
+                         "]: phases need temperature; set [thermal] enabled = true");
+    }
+    for (const SettingsSection& e : *sections.array("emitter")) refuse(e, "temperature");
+    for (const SettingsSection& c : *sections.array("collider")) {
+        refuse(c, "temperature");
+        refuse(c, "heat_transfer");
+    }
+    if (!scene.heaters.empty()) {
+        throw SceneError("[[heater]]: heaters need temperature; set [thermal] enabled = true");
+    }
+}
+
 void validateScene(const Scene& scene, const SceneSections& sections, Reporter& reporter) {
     scene.simulation.validate(*sections.single("simulation"), reporter);
+    checkThermalKeys(scene, sections);
     const std::vector<const SettingsSection*> materialPlaces = materialSections(sections);
     scene.material.validate(*materialPlaces[0], reporter);
     for (std::size_t k = 0; k < scene.otherMaterials.size(); ++k) {
         scene.otherMaterials[k].validate(*materialPlaces[k + 1], reporter);
+    }
+    const std::vector<MaterialSettings> materials = scene.simulationSetup().materials();
+    for (std::size_t k = 0; k < materials.size(); ++k) {
+        if (const SettingsSection* solid = sections.phase(k, "solid")) materials[k].solid.validate(*solid, reporter);
+        if (const SettingsSection* liquid = sections.phase(k, "liquid")) materials[k].liquid.validate(*liquid, reporter);
     }
     const auto& emitterSections = *sections.array("emitter");
     for (std::size_t i = 0; i < scene.emitters.size(); ++i) {
@@ -232,6 +292,8 @@ void validateScene(const Scene& scene, const SceneSections& sections, Reporter& 
     }
     checkMaterialNames(scene, sections);
     checkNeighbourReach(scene, sections);
+    const auto& heaterSections = *sections.array("heater");
+    for (std::size_t i = 0; i < scene.heaters.size(); ++i) scene.heaters[i].validate(heaterSections[i]);
     scene.surface.validate();
     scene.render.validate(*sections.single("render"));
     scene.camera.validate(*sections.single("camera"));

@@ -33,6 +33,8 @@ struct Scene {
     RenderSettings render;
     CameraSettings camera;
     std::vector<LightSettings> lights;  ///< [[light]]; one key light when none is given
+    ThermalSettings thermal;              ///< [thermal]
+    std::vector<HeaterSettings> heaters;  ///< [[heater]]
 
     std::filesystem::path file;  ///< the scene file; empty for the built-in default
     std::filesystem::path directory() const;  ///< relative paths resolve against it
@@ -67,11 +69,16 @@ std::string resolvedSceneToml(const Scene& scene);
 struct SceneSections {
     std::vector<SettingsSection> singles;  ///< [simulation], [material], ...
     std::vector<std::pair<std::string, std::vector<SettingsSection>>> arrays;  ///< [[emitter]]
+    /// [material.solid] and [material.liquid] tables as parsed, named "material[k].solid"
+    /// (or "material.solid" for a single [material]).
+    std::vector<SettingsSection> phases;
 
     SettingsSection* single(const std::string& name);
     const SettingsSection* single(const std::string& name) const;
     std::vector<SettingsSection>* array(const std::string& name);
     const std::vector<SettingsSection>* array(const std::string& name) const;
+    /// The parsed phase table @p phase ("solid" or "liquid") of material @p k, or nullptr.
+    const SettingsSection* phase(std::size_t k, const std::string& phase) const;
     std::vector<std::string> names() const;  ///< every section name, for suggestions
 };
 

@@ -87,13 +87,14 @@ SettingValue toValue(const toml::node& node, const SourcePlace& place, const std
     return v;
 }
 
-/// @param nested a key holding nested [[section.nested]] tables, bound by the caller.
+/// @param nested keys holding nested tables ([[collider.key]], [material.solid]), bound
+///        by the caller.
 void bindTable(const toml::table& table, SettingsSection& section, const std::string& pathPrefix,
                const std::string& sourceName, const OverridePlaces& overrides,
-               const std::string& nested = "") {
+               const std::vector<std::string>& nested = {}) {
     for (const auto& [key, node] : table) {
         const std::string k(key.str());
-        if (!nested.empty() && k == nested) continue;
+        if (std::find(nested.begin(), nested.end(), k) != nested.end()) continue;
         const std::string path = pathPrefix + "." + k;
         const SourcePlace place = placeOf(node, sourceName, path, overrides);
         if (node.is_table() || node.is_array_of_tables()) {
@@ -225,6 +226,33 @@ void bindColliderKeys(const toml::table& element, ColliderSettings& collider,
     }
 }
 
+/// The [material.solid] and [material.liquid] tables of one material section (at @p path,
+/// "material" or "material.1"; named @p sectionName in messages), into @p sections.
+void bindPhases(const toml::table& table, MaterialSettings& material, const std::string& path,
+                const std::string& sectionName, const std::string& sourceName,
+                const OverridePlaces& places, std::vector<SettingsSection>& sections) {
+    for (const auto& [which, constants] :
+         {std::pair{"solid", &material.solid}, std::pair{"liquid", &material.liquid}}) {
+        const toml::node* node = table.get(which);
+        if (!node) continue;
+        const std::string phasePath = path + "." + which;
+        const toml::table* phase = node->as_table();
+        if (!phase) {
+            std::ostringstream message;  // (GCC 12 warns falsely on a chain of +)
+            message << "'" << which << "' of a material must be a table: [" << sectionName << "."
+                    << which << "]";
+            failAt(placeOf(*node, sourceName, phasePath, places), message.str());
+        }
+        // A phase starts from the material's own constants: it names what differs.
+        *constants = static_cast<const ForceConstants&>(material);
+        SettingsSection section(sectionName + "." + which);
+        MaterialSettings::describePhase(section, *constants);
+        bindTable(*phase, section, phasePath, sourceName, places);
+        material.phases = true;
+        sections.push_back(std::move(section));
+    }
+}
+
 /// A value as TOML text. Floats use the shortest form that reads back to the same double
 /// (9.8, not 9.8000000000000007), so the resolved scene reproduces the run exactly.
 std::string tomlText(const SettingValue::Data& data) {
@@ -298,7 +326,10 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
         if (SettingsSection* section = sections.single(name)) {
             const toml::table* table = node.as_table();
             if (!table) failAt(place, "'" + name + "' must be a section: [" + name + "]");
-            bindTable(*table, *section, name, sourceName, places);
+            const bool material = name == "material";
+            bindTable(*table, *section, name, sourceName, places,
+                      material ? std::vector<std::string>{"solid", "liquid"} : std::vector<std::string>{});
+            if (material) bindPhases(*table, scene.material, name, name, sourceName, places, sections.phases);
         } else if (auto* elements = sections.array(name)) {
             const toml::array* array = node.as_array();
             if (!array || !array->is_array_of_tables()) {
@@ -306,12 +337,19 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
             }
             for (std::size_t i = 0; i < array->size(); ++i) {
                 const toml::table& element = *array->get(i)->as_table();
-                const bool collider = name == "collider";
+                const bool collider = name == "collider", material = name == "material";
                 bindTable(element, (*elements)[i], arrayIndexPath(name, i), sourceName, places,
-                          collider ? "key" : "");
+                          collider   ? std::vector<std::string>{"key"}
+                          : material ? std::vector<std::string>{"solid", "liquid"}
+                                     : std::vector<std::string>{});
                 if (collider) {
                     bindColliderKeys(element, scene.colliders[i], arrayIndexPath(name, i),
                                      sourceName, places);
+                }
+                if (material) {
+                    bindPhases(element, i == 0 ? scene.material : scene.otherMaterials[i - 1],
+                               arrayIndexPath(name, i), "material[" + std::to_string(i) + "]",
+                               sourceName, places, sections.phases);
                 }
             }
         } else {
@@ -379,8 +417,36 @@ std::string resolvedSceneToml(const Scene& constScene) {
                                : quoteForMessage(scene.file.string(), std::string::npos))
         << "\n";
     const auto everyKey = [](const std::string&) { return true; };
+    // Keys that only mean something with temperature are left out of a scene without it
+    // (reading them back would be an error), and a melting range without phases.
+    const bool thermal = scene.thermal.enabled;
+    const auto thermalKeys = [&](const std::string& section, const std::string& key,
+                                 const MaterialSettings* material = nullptr) {
+        static const std::vector<std::pair<std::string, std::string>> kThermalOnly = {
+            {"material", "heat_capacity"}, {"material", "conductivity"}, {"material", "expansion"},
+            {"material", "t_solid"},       {"material", "t_liquid"},     {"emitter", "temperature"},
+            {"collider", "temperature"},   {"collider", "heat_transfer"}};
+        if (section == "thermal") return thermal || key == "enabled";
+        if (material && !material->phases && (key == "t_solid" || key == "t_liquid")) return false;
+        return thermal || std::find(kThermalOnly.begin(), kThermalOnly.end(),
+                                    std::pair{section, key}) == kThermalOnly.end();
+    };
+    const auto phasesText = [&](MaterialSettings& material, const std::string& table) {
+        if (!material.phases) return;
+        for (const auto& [which, constants] :
+             {std::pair{"solid", &material.solid}, std::pair{"liquid", &material.liquid}}) {
+            SettingsSection section(table + "." + which);
+            MaterialSettings::describePhase(section, *constants);
+            out << "\n[" << table << "." << which << "]\n" << sectionText(section, everyKey);
+        }
+    };
     for (const auto& section : sections.singles) {
-        out << "\n[" << section.name() << "]\n" << sectionText(section, everyKey);
+        const std::string& name = section.name();
+        const MaterialSettings* material = name == "material" ? &scene.material : nullptr;
+        out << "\n[" << name << "]\n" << sectionText(section, [&](const std::string& key) {
+            return thermalKeys(name, key, material);
+        });
+        if (material) phasesText(scene.material, "material");
     }
     for (const auto& [name, elements] : sections.arrays) {
         for (std::size_t i = 0; i < elements.size(); ++i) {
@@ -388,18 +454,25 @@ std::string resolvedSceneToml(const Scene& constScene) {
             if (name == "emitter") {
                 const EmitterSettings& emitter = scene.emitters[i];
                 out << sectionText(elements[i], [&](const std::string& key) {
-                    return emitterKeyApplies(emitter.type, key);
+                    return emitterKeyApplies(emitter.type, key) && thermalKeys(name, key);
                 });
             } else if (name == "collider") {
                 ColliderSettings& collider = scene.colliders[i];
                 out << sectionText(elements[i], [&](const std::string& key) {
-                    return colliderKeyApplies(collider.shape, key, collider.dynamic);
+                    return colliderKeyApplies(collider.shape, key, collider.dynamic) &&
+                           thermalKeys(name, key);
                 });
                 for (ColliderKey& key : collider.keys) {
                     SettingsSection section("collider.key");
                     key.describe(section);
                     out << "\n[[collider.key]]\n" << sectionText(section, everyKey);
                 }
+            } else if (name == "material") {
+                MaterialSettings& material = i == 0 ? scene.material : scene.otherMaterials[i - 1];
+                out << sectionText(elements[i], [&](const std::string& key) {
+                    return thermalKeys(name, key, &material);
+                });
+                phasesText(material, "material");
             } else {
                 out << sectionText(elements[i], everyKey);
             }
@@ -430,6 +503,10 @@ std::string sceneKeysMarkdown() {
               [&](const std::string& key) { return emitterKeyApplies(type, key); });
     }
     table("[[light]]", sections.array("light")->front(), everyKey);
+    HeaterSettings heater;  // a scene has none by default
+    SettingsSection heaterSection("heater[0]");
+    heater.describe(heaterSection);
+    table("[[heater]] (thermal)", heaterSection, everyKey);
     // A scene has no collider by default: describe one to list its keys.
     ColliderSettings collider;
     SettingsSection colliderSection("collider[0]");
@@ -451,6 +528,12 @@ std::string sceneKeysMarkdown() {
     SettingsSection pairSection("material_pair[0]");
     pair.describe(pairSection);
     table("[[material_pair]]", pairSection, everyKey);
+    // Phases: [material.solid] and [material.liquid] (after [material] or a [[material]]).
+    ForceConstants phase;
+    SettingsSection phaseSection("material.solid");
+    MaterialSettings::describePhase(phaseSection, phase);
+    table("[material.solid] and [material.liquid] (thermal: each defaults to the material's own)",
+          phaseSection, everyKey);
     return out.str();
 }
 

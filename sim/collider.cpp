@@ -24,7 +24,9 @@ const std::map<std::string, std::vector<std::string>>& shapeKeys() {
     return keys;
 }
 
-const std::vector<std::string> kCommonKeys = {"name", "shape", "ks", "kd", "contact", "friction"};
+const std::vector<std::string> kCommonKeys = {"name",     "shape",       "ks",
+                                              "kd",       "contact",     "friction",
+                                              "temperature", "heat_transfer"};
 /// What a rigid body reads: `dynamic` on every solid shape, the rest once it is set.
 const std::vector<std::string> kDynamicKeys = {"mass", "velocity", "angular_velocity"};
 
@@ -69,6 +71,10 @@ void ColliderSettings::describe(SettingsSection& s) {
              "contact at the globule centre (as the paper's ground) or at its surface");
     s.number("friction", friction, NumberRange::nonNegative(),
              "Coulomb friction coefficient; 0 = frictionless");
+    s.number("temperature", temperature, NumberRange::between(-1e6, 1e6),
+             "thermal: temperature of its surface (a hot or cold plate)");
+    s.number("heat_transfer", heatTransfer, NumberRange::nonNegative(),
+             "thermal: heat transfer rate with a globule touching it, 1/s (0: insulating)");
     s.flag("dynamic", dynamic,
            "a rigid body moved by gravity and by the globules' forces (two-way coupling)");
     s.number("mass", mass, NumberRange{0, 1e12, true}, "dynamic: mass (a globule's is 1)");

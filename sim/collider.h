@@ -46,6 +46,8 @@ struct ColliderSettings {
     double ks = 5000;           ///< penalty stiffness (the ground's default)
     double kd = 300;            ///< penalty damping (the ground's default)
     std::string contact = "center";  ///< center | surface (offset by the globule's radius)
+    double temperature = 20;    ///< thermal: its surface temperature
+    double heatTransfer = 0;    ///< thermal: rate toward it while touching, 1/s (0: insulating)
     double friction = 0;        ///< Coulomb coefficient mu; 0 = frictionless, as the paper
     std::vector<ColliderKey> keys;  ///< [[collider.key]]: the motion (collider_motion.h)
     bool dynamic = false;       ///< a rigid body moved by gravity and the globules

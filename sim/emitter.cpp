@@ -24,7 +24,8 @@ const std::map<std::string, std::vector<std::string>>& typeKeys() {
     return keys;
 }
 
-const std::vector<std::string> kCommonKeys = {"type", "radius", "mass", "jitter", "material"};
+const std::vector<std::string> kCommonKeys = {"type",   "radius",  "mass",
+                                              "jitter", "material", "temperature"};
 
 }  // namespace
 
@@ -42,6 +43,8 @@ void EmitterSettings::describe(SettingsSection& s) {
     s.number("radius", radius, NumberRange::positive(), "globule radius, world units");
     s.text("material", material, "the [[material]] it emits, by name (empty: the first)");
     s.number("mass", mass, NumberRange::positive(), "mass per globule");
+    s.number("temperature", temperature, NumberRange::between(-1e6, 1e6),
+             "initial temperature of its globules ([thermal] scenes)");
     s.vec3("velocity", velocity, NumberRange::any(), "initial velocity, units / s");
     s.number("jitter", jitter, NumberRange::nonNegative(), "random offset, world units");
     s.vec3("center", center, NumberRange::any(), "helix base or spout nozzle, world units");

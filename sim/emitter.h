@@ -27,6 +27,7 @@ struct EmitterSettings {
     double radius = 1.0;         ///< globule radius, world units
     std::string material;        ///< the [[material]] it emits ("": the first)
     double mass = 1.0;           ///< per globule
+    double temperature = 20;     ///< initial temperature of its globules (thermal scenes)
     Vec3 velocity{0, 0, 0};      ///< initial velocity, units / s (helix, box, points)
     double jitter = 0.05;        ///< random offset amplitude, world units (seeded)
     // helix

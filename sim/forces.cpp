@@ -12,6 +12,7 @@
 
 #include "collider_contact.h"
 #include "errors.h"
+#include "thermal_kernel.h"
 
 namespace globular {
 
@@ -250,6 +251,176 @@ void pairForcesSorting(Globules& g, const PairTable& pairs, NeighborWorkspace& w
                       });
 }
 
+namespace {
+
+/// The blended force sum for a pair's exponents.
+using SumBlended = void (*)(const ThermalPair&, float, const NeighborBatch&, float&, float&, float&);
+
+/// What the thermal loop runs for one pair of materials in each phase.
+struct ThermalKernel {
+    ThermalPair pair;
+    float reach2 = 0;  ///< (the pair's reach in both phases)^2, in units of r_i + r_j
+    SumBatch solid, liquid;
+    SumBlended blended;
+
+    explicit ThermalKernel(const ThermalPair& p)
+        : pair(p),
+          solid(batchKernelFor(p.solid)),
+          liquid(batchKernelFor(p.liquid)),
+          blended(sumBlendedBatch<0, 0>) {
+        const float reach = std::max(p.solid.cutoff(1.0f), p.liquid.cutoff(1.0f));
+        reach2 = reach * reach;
+        const bool shared = p.solid.integerExponents && p.liquid.integerExponents &&
+                            p.solid.mInt == p.liquid.mInt && p.solid.nInt == p.liquid.nInt;
+        if (shared) {
+            blended = forExponents(p.solid, []<int M, int N>() { return SumBlended(sumBlendedBatch<M, N>); });
+        }
+    }
+};
+
+/// sumRangeMixed for thermal scenes: the candidates of a cell gathered once per material
+/// with their temperatures; for each member and material, the heat summed as the
+/// neighbours are collected and the force in the pair's phase (thermal_kernel.h).
+void sumRangeThermal(const std::vector<ThermalKernel>& kernels, std::size_t kinds,
+                     const NeighborGrid& grid, const Globules& s, bool uniformRadius,
+                     std::size_t begin, std::size_t end, Accelerations& forces) {
+    const GlobuleArrays arrays{s.px.data(), s.py.data(), s.pz.data(),     s.vx.data(),
+                               s.vy.data(), s.vz.data(), s.radius.data(), s.temperature.data()};
+    const float groupReach = grid.cellSize() * 1.0001f;
+    NeighborGrid::RunCursor cursor;
+    CellGroup group;
+    std::vector<GroupCandidates> candidates(kinds);
+    for (GroupCandidates& c : candidates) c.uniformRadius = uniformRadius;
+    std::vector<std::pair<float, float>> ranges(kinds);
+    NeighborBatch batch;
+    for (std::size_t first = begin; first < end;) {
+        groupAt(grid, s, first, end, cursor, group);
+        const std::size_t last = group.last;
+        for (GroupCandidates& c : candidates) {
+            c.reserve(group.total);
+            c.count = 0;
+        }
+        for (int b = 0; b < group.runCount; ++b) {
+            if (kinds == 1) {
+                collectGroupCandidates(arrays, group.runs[b].first, group.runs[b].second,
+                                       group.lo, group.hi, groupReach, candidates[0]);
+            } else {
+                collectGroupCandidatesByMaterial(arrays, group.runs[b].first, group.runs[b].second,
+                                                 group.lo, group.hi, groupReach, s.material.data(),
+                                                 candidates);
+            }
+        }
+        for (std::size_t kind = 0; kind < kinds; ++kind) {
+            const GroupCandidates& c = candidates[kind];
+            if (c.count > 0) ranges[kind] = temperatureRange(c.temperature.data(), c.count);
+        }
+        batch.reserve(group.total);
+        for (std::size_t k = first; k < last; ++k) {
+            const std::size_t mine = s.materialOf(k);
+            const float t = s.temperature[k];
+            float fx = 0, fy = 0, fz = 0, heat = 0;
+            for (std::size_t kind = 0; kind < kinds; ++kind) {
+                if (candidates[kind].count == 0) continue;
+                const ThermalKernel& kernel = kernels[mine * kinds + kind];
+                const ThermalPhase phase =
+                    phaseOf(kernel.pair, t, ranges[kind].first, ranges[kind].second);
+                NeighborHeat flow{t, kernel.pair.conductance, phase == ThermalPhase::Blend};
+                batch.count = 0;
+                collectNeighbors<true>(candidates[kind], s.px[k], s.py[k], s.pz[k], s.vx[k],
+                                       s.vy[k], s.vz[k], s.radius[k], kernel.reach2, batch, &flow);
+                heat += flow.heat;
+                if (phase == ThermalPhase::Blend) {
+                    kernel.blended(kernel.pair, t, batch, fx, fy, fz);
+                } else if (phase == ThermalPhase::Solid) {
+                    kernel.solid(kernel.pair.solid, batch, fx, fy, fz);
+                } else {
+                    kernel.liquid(kernel.pair.liquid, batch, fx, fy, fz);
+                }
+            }
+            forces.x[k] = fx;
+            forces.y[k] = fy;
+            forces.z[k] = fz;
+            forces.heat[k] = heat;
+        }
+        first = last;
+    }
+}
+
+void checkThermal(const Globules& g, const PairTable& pairs) {
+    if (g.temperature.size() != g.size()) throw Error("a thermal scene, but globules without a temperature");
+    if (pairs.materials() > 1 && g.material.size() != g.size()) {
+        throw Error("several materials, but globules without one");
+    }
+}
+
+}  // namespace
+
+void pairForcesThermal(Globules& g, const PairTable& pairs, NeighborWorkspace& w,
+                       Accelerations& forces) {
+    const std::size_t n = g.size();
+    forces.resize(n);
+    forces.heat.resize(n);
+    if (n == 0) return;
+    checkThermal(g, pairs);
+    const auto [smallest, largest] = radiusRange(g);
+    w.largestRadius = largest;
+    w.grid.build(g.px.data(), g.py.data(), g.pz.data(), n, pairs.cutoff(2.0f * largest));
+    g.permute(w.grid.sortedOrder(), forces.x);
+    const std::size_t kinds = pairs.materials();
+    std::vector<ThermalKernel> kernels;
+    for (std::size_t a = 0; a < kinds; ++a) {
+        for (std::size_t b = 0; b < kinds; ++b) kernels.emplace_back(pairs.thermal(a, b));
+    }
+    const bool uniformRadius = smallest == largest;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          sumRangeThermal(kernels, kinds, w.grid, g, uniformRadius, r.begin(),
+                                          r.end(), forces);
+                      });
+}
+
+void pairForcesThermalAllPairs(const Globules& g, const PairTable& pairs, Accelerations& forces) {
+    const std::size_t n = g.size();
+    forces.resize(n);
+    forces.heat.resize(n);
+    if (n == 0) return;
+    checkThermal(g, pairs);
+    // Every pair on its own through the generic blend: the reference the grid loop must match.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          NeighborBatch batch;
+                          batch.reserve(1);
+                          batch.count = 1;
+                          for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                              float fx = 0, fy = 0, fz = 0, heat = 0;
+                              for (std::size_t j = 0; j < n; ++j) {
+                                  const ThermalPair& pair = pairs.thermal(g.materialOf(i), g.materialOf(j));
+                                  const float reach = std::max(pair.solid.cutoff(1.0f), pair.liquid.cutoff(1.0f));
+                                  const float dx = g.px[i] - g.px[j], dy = g.py[i] - g.py[j],
+                                              dz = g.pz[i] - g.pz[j];
+                                  const float sum = g.radius[i] + g.radius[j];
+                                  const float d2 = dx * dx + dy * dy + dz * dz;
+                                  const float limit = sum * sum * (reach * reach);
+                                  if (j == i || !(d2 < limit) || d2 == 0) continue;
+                                  batch.dx[0] = dx;
+                                  batch.dy[0] = dy;
+                                  batch.dz[0] = dz;
+                                  batch.vDotP[0] = (g.vx[i] - g.vx[j]) * dx +
+                                                   (g.vy[i] - g.vy[j]) * dy + (g.vz[i] - g.vz[j]) * dz;
+                                  batch.radiusSum[0] = sum;
+                                  batch.temperature[0] = g.temperature[j];
+                                  sumBlendedBatch<0, 0>(pair, g.temperature[i], batch, fx, fy, fz);
+                                  heat += pair.conductance * (1 - d2 / limit) *
+                                          (g.temperature[j] - g.temperature[i]);
+                              }
+                              forces.x[i] = fx;
+                              forces.y[i] = fy;
+                              forces.z[i] = fz;
+                              forces.heat[i] = heat;
+                          }
+                      });
+}
+
 void pairForcesAllPairs(const Globules& g, const PairTable& pairs, Accelerations& forces) {
     const std::size_t n = g.size();
     forces.resize(n);
@@ -410,7 +581,10 @@ void ForceField::addExternalForces(Globules& g, Accelerations& out) {
 
 void ForceField::compute(Globules& g, Accelerations& out) {
     const bool one = mPairs.materials() == 1;
-    if (mAllPairs) {
+    if (mExternal.thermal.enabled()) {
+        mAllPairs ? pairForcesThermalAllPairs(g, mPairs, out)
+                  : pairForcesThermal(g, mPairs, mWorkspace, out);
+    } else if (mAllPairs) {
         one ? pairForcesAllPairs(g, mPairs(0, 0), out) : pairForcesAllPairs(g, mPairs, out);
     } else {
         one ? pairForcesSorting(g, mPairs(0, 0), mWorkspace, out)
@@ -420,6 +594,7 @@ void ForceField::compute(Globules& g, Accelerations& out) {
         mLargestRadius = mAllPairs ? radiusRange(g).second : mWorkspace.largestRadius;
     }
     addExternalForces(g, out);
+    mExternal.thermal.apply(g, mExternal.colliders, out);
 }
 
 }  // namespace globular

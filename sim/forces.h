@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "accelerations.h"
 #include "collider_set.h"
 #include "material_pairs.h"
 #include "globules.h"
@@ -16,22 +17,15 @@
 #include "pair_force.h"
 #include "pair_kernel.h"
 #include "simulation_settings.h"
+#include "thermal_sources.h"
 
 namespace globular {
-
-struct Accelerations {
-    std::vector<float> x, y, z;  ///< world units / s^2
-    void resize(std::size_t n) {
-        x.resize(n);
-        y.resize(n);
-        z.resize(n);
-    }
-};
 
 struct ExternalForces {
     Vec3 gravity{0, -9.8, 0};
     GroundSettings ground;
     ColliderSet colliders;  ///< [[collider]] (collider_contact.h)
+    ThermalSources thermal;  ///< [thermal]: off by default
 };
 
 /// Sum of pair forces on each globule over all others: the paper's O(N^2) reference.
@@ -65,6 +59,16 @@ std::pair<float, float> buildGrid(const Globules& globules, const PairForce& pai
 /// material, so every pair still goes through the single-material kernels.
 void pairForcesSorting(Globules& globules, const PairTable& pairs, NeighborWorkspace& workspace,
                        Accelerations& forces);
+
+/// pairForcesSorting for thermal scenes (thermal_kernel.h): each pair's constants blended
+/// by its mean temperature, and the heat flowing into each globule in @p forces.heat.
+/// globules.temperature must be set (globules.material too with several materials).
+void pairForcesThermal(Globules& globules, const PairTable& pairs, NeighborWorkspace& workspace,
+                       Accelerations& forces);
+
+/// The O(N^2) reference of pairForcesThermal.
+void pairForcesThermalAllPairs(const Globules& globules, const PairTable& pairs,
+                               Accelerations& forces);
 
 /// The O(N^2) reference for several materials.
 void pairForcesAllPairs(const Globules& globules, const PairTable& pairs, Accelerations& forces);

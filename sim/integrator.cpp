@@ -17,6 +17,13 @@ void forEachGlobule(std::size_t n, Body&& body) {
                       });
 }
 
+/// T += dt dT/dt, explicit in every scheme: heat spreads far slower than globules move,
+/// and the rate depends on positions and temperatures only.
+void advanceTemperature(Globules& g, const Accelerations& a, float dt) {
+    if (g.temperature.empty()) return;
+    forEachGlobule(g.size(), [&](std::size_t i) { g.temperature[i] += dt * a.heat[i]; });
+}
+
 /// Nothing moving besides the globules.
 class Nothing final : public CoIntegrated {
 public:
@@ -35,6 +42,7 @@ void Integrator::step(Globules& g, float dt, const AccelerationFunction& acceler
 void ForwardEuler::advance(Globules& g, float dt, const AccelerationFunction& accelerate,
                            CoIntegrated& partner) {
     accelerate(g, mA);
+    advanceTemperature(g, mA, dt);
     forEachGlobule(g.size(), [&](std::size_t i) {
         g.px[i] += dt * g.vx[i];
         g.py[i] += dt * g.vy[i];
@@ -50,6 +58,7 @@ void ForwardEuler::advance(Globules& g, float dt, const AccelerationFunction& ac
 void SemiImplicitEuler::advance(Globules& g, float dt, const AccelerationFunction& accelerate,
                                 CoIntegrated& partner) {
     accelerate(g, mA);
+    advanceTemperature(g, mA, dt);
     forEachGlobule(g.size(), [&](std::size_t i) {
         g.vx[i] += dt * mA.x[i];
         g.vy[i] += dt * mA.y[i];
@@ -67,6 +76,7 @@ void VelocityVerlet::advance(Globules& g, float dt, const AccelerationFunction& 
     // Globules added since the last step (a spout) invalidate the carried accelerations.
     if (mA.x.size() != g.size()) accelerate(g, mA);
     const float half = 0.5f * dt;
+    advanceTemperature(g, mA, dt);
     forEachGlobule(g.size(), [&](std::size_t i) {
         g.px[i] += dt * (g.vx[i] + half * mA.x[i]);
         g.py[i] += dt * (g.vy[i] + half * mA.y[i]);

@@ -8,8 +8,7 @@
 
 namespace globular {
 
-void MaterialSettings::describe(SettingsSection& s) {
-    s.text("name", name, "how emitters and [[material_pair]] name it (several materials)");
+void ForceConstants::describeConstants(SettingsSection& s) {
     s.choice("preset", preset, {"powder", "liquid", "solid", "custom"},
              "window constants of eq. (6)-(8); custom requires cr and cd");
     s.number("r0", r0, NumberRange::positive(), "rest distance, world units");
@@ -21,9 +20,25 @@ void MaterialSettings::describe(SettingsSection& s) {
              "radial window C_r as a number (0 = from preset)");
     s.number("cd", cd, NumberRange::nonNegative(),
              "drag window C_d as a number (0 = from preset)");
+}
+
+void MaterialSettings::describe(SettingsSection& s) {
+    s.text("name", name, "how emitters and [[material_pair]] name it (several materials)");
+    describeConstants(s);
     s.vec3("color", color, NumberRange::between(0, 1),
            "sRGB colour for [render] color_by = \"material\"; [0, 0, 0]: one of a palette "
            "by the material's place");
+    s.number("heat_capacity", heatCapacity, NumberRange::positive(),
+             "thermal: heat capacity per unit mass");
+    s.number("conductivity", conductivity, NumberRange::nonNegative(),
+             "thermal: heat flow between touching globules per degree (pairs of materials: "
+             "the harmonic mean)");
+    s.number("expansion", expansion, NumberRange::any(),
+             "thermal: expansion coefficient beta, buoyancy -beta (T - T_ref) m g");
+    s.number("t_solid", tSolid, NumberRange::any(),
+             "thermal: at or below it the [material.solid] constants hold");
+    s.number("t_liquid", tLiquid, NumberRange::any(),
+             "thermal: at or above it the [material.liquid] constants hold");
 }
 
 Vec3 materialColor(const MaterialSettings& material, std::size_t index) {
@@ -35,19 +50,19 @@ Vec3 materialColor(const MaterialSettings& material, std::size_t index) {
     return kPalette[index % (sizeof kPalette / sizeof kPalette[0])];
 }
 
-double MaterialSettings::resolvedCr() const {
+double ForceConstants::resolvedCr() const {
     if (cr > 0) return cr;
     return preset == "solid" ? 2.0 * r0 : r0;
 }
 
-double MaterialSettings::resolvedCd() const {
+double ForceConstants::resolvedCd() const {
     if (cd > 0) return cd;
     if (preset == "solid") return 2.0 * r0;
     if (preset == "liquid") return alpha * r0;
     return r0;
 }
 
-void MaterialSettings::validate(const SettingsSection& s, Reporter& reporter) const {
+void ForceConstants::validate(const SettingsSection& s, Reporter& reporter) const {
     if (preset == "custom" && (cr <= 0 || cd <= 0)) {
         throw SceneError(s.describeKey("preset") +
                          ": the custom preset needs both cr and cd set to positive numbers");
@@ -64,6 +79,28 @@ void MaterialSettings::validate(const SettingsSection& s, Reporter& reporter) co
     if (preset == "liquid" && cd == 0 && (alpha < 1.5 || alpha > 2.0)) {
         reporter.warn(s.describeKey("alpha") + ": alpha = " + std::to_string(alpha) +
                       " is outside the paper's liquid range [1.5, 2]");
+    }
+}
+
+void MaterialSettings::validate(const SettingsSection& s, Reporter& reporter) const {
+    ForceConstants::validate(s, reporter);
+    if (!phases) {
+        for (const char* key : {"t_solid", "t_liquid"}) {
+            if (s.placeOf(key)) {
+                throw SceneError(s.describeKey(key) +
+                                 ": a melting range needs a [material.solid] or "
+                                 "[material.liquid] table of constants");
+            }
+        }
+        return;
+    }
+    if (!s.placeOf("t_solid") || !s.placeOf("t_liquid")) {
+        throw SceneError(s.describeKey(s.placeOf("t_solid") ? "t_liquid" : "t_solid") +
+                         ": a material with phases needs both t_solid and t_liquid");
+    }
+    if (!(tSolid < tLiquid)) {
+        throw SceneError(s.describeKey("t_solid") + " = " + numberForMessage(tSolid) +
+                         " must lie below t_liquid = " + numberForMessage(tLiquid));
     }
 }
 

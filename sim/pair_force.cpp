@@ -4,7 +4,7 @@
 
 namespace globular {
 
-PairForce PairForce::fromMaterial(const MaterialSettings& material) {
+PairForce PairForce::fromMaterial(const ForceConstants& material) {
     PairForce f;
     f.b1 = float(material.b1);
     f.b2 = float(material.b1 * std::pow(material.r0, material.n - material.m));

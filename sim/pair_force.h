@@ -9,7 +9,7 @@
 
 namespace globular {
 
-struct MaterialSettings;
+struct ForceConstants;
 
 /// Distances below this fraction of r_i + r_p are treated as this distance, so two
 /// coincident globules (P = 0) feel no force and near-coincident ones a large but finite
@@ -24,7 +24,7 @@ struct PairForce {
     int mInt = 5, nInt = 3;   ///< m, n when both are whole numbers
     bool integerExponents = true;
 
-    static PairForce fromMaterial(const MaterialSettings& material);
+    static PairForce fromMaterial(const ForceConstants& material);
 
     /// Largest reach of either window for radii summing to @p radiusSum.
     float cutoff(float radiusSum) const { return (cr > cd ? cr : cd) * radiusSum; }

@@ -21,8 +21,11 @@
 namespace globular {
 
 /// Read-only view of globule arrays (struct of arrays), in neighbour-grid order.
+/// Thermal scenes also pass the temperatures, which then travel with the candidates
+/// (thermal_kernel.h).
 struct GlobuleArrays {
     const float *x, *y, *z, *vx, *vy, *vz, *radius;
+    const float* temperature = nullptr;
 };
 
 /// One globule's neighbours within reach: P = x_i - x_j, V.P with V = v_i - v_j (all the
@@ -32,10 +35,11 @@ struct NeighborBatch {
     std::vector<float> dx, dy, dz, vDotP, radiusSum;
     float uniformSum = 0;  ///< r_i + r_j of every neighbour, or 0: see radiusSum
     uint32_t count = 0;
+    std::vector<float> temperature;  ///< thermal scenes where pairs melt (NeighborHeat)
 
     /// Room for @p candidates entries.
     void reserve(std::size_t candidates) {
-        for (auto* a : {&dx, &dy, &dz, &vDotP, &radiusSum}) {
+        for (auto* a : {&dx, &dy, &dz, &vDotP, &radiusSum, &temperature}) {
             if (a->size() < candidates + kPadding) a->resize(candidates + kPadding);
         }
     }
@@ -50,11 +54,14 @@ struct GroupCandidates {
     std::vector<float> x, y, z, vx, vy, vz, radius;
     bool uniformRadius = false;  ///< all globules share one radius: `radius` is not kept
     uint32_t count = 0;
+    std::vector<float> temperature;  ///< thermal scenes (GlobuleArrays::temperature)
 
     /// Room for @p candidates entries.
     void reserve(std::size_t candidates) {
         if (x.size() >= candidates + kPadding) return;
-        for (auto* a : {&x, &y, &z, &vx, &vy, &vz, &radius}) a->resize(candidates + kPadding);
+        for (auto* a : {&x, &y, &z, &vx, &vy, &vz, &radius, &temperature}) {
+            a->resize(candidates + kPadding);
+        }
     }
 };
 
@@ -127,6 +134,7 @@ inline void collectGroupCandidates(const GlobuleArrays& s, uint32_t begin, uint3
         keepFrom(out.vy, s.vy);
         keepFrom(out.vz, s.vz);
         if (!out.uniformRadius) keepFrom(out.radius, s.radius);
+        if (s.temperature) keepFrom(out.temperature, s.temperature);
         count += uint32_t(__builtin_popcount(near));
     }
 #else
@@ -144,6 +152,7 @@ inline void collectGroupCandidates(const GlobuleArrays& s, uint32_t begin, uint3
         out.vy[count] = s.vy[j];
         out.vz[count] = s.vz[j];
         out.radius[count] = s.radius[j];
+        if (s.temperature) out.temperature[count] = s.temperature[j];
         count += d2 <= reach2 && (!material || material[j] == want);
     }
 #endif
@@ -168,6 +177,7 @@ inline void collectGroupCandidatesByMaterial(const GlobuleArrays& s, uint32_t be
         const __m512 vy = _mm512_maskz_loadu_ps(near, s.vy + j);
         const __m512 vz = _mm512_maskz_loadu_ps(near, s.vz + j);
         const __m512 r = _mm512_maskz_loadu_ps(near, s.radius + j);
+        const __m512 t = s.temperature ? _mm512_maskz_loadu_ps(near, s.temperature + j) : r;
         for (std::size_t kind = 0; kind < out.size(); ++kind) {
             const __mmask16 mine = near & materialMask(material + j, left, uint8_t(kind));
             if (!mine) continue;
@@ -182,6 +192,7 @@ inline void collectGroupCandidatesByMaterial(const GlobuleArrays& s, uint32_t be
             keep(c.vy, vy);
             keep(c.vz, vz);
             if (!c.uniformRadius) keep(c.radius, r);
+            if (s.temperature) keep(c.temperature, t);
             c.count += uint32_t(__builtin_popcount(mine));
         }
     }
@@ -192,12 +203,25 @@ inline void collectGroupCandidatesByMaterial(const GlobuleArrays& s, uint32_t be
 #endif
 }
 
+/// What collectNeighbors does besides in thermal scenes (thermal_settings.h): it sums the
+/// heat flowing into globule i from each neighbour within reach, k w (T_j - T_i) with
+/// w = 1 - d^2 / (reach^2 (r_i + r_j)^2), while it has the pair at hand, and keeps what
+/// the blended force needs (thermal_kernel.h).
+struct NeighborHeat {
+    float temperature = 0;          ///< T_i
+    float conductance = 0;          ///< k of the pair
+    bool keepTemperature = false;   ///< keep the neighbours' temperatures (the blend)
+    float heat = 0;                 ///< out: the sum
+};
+
 /// Appends to @p out the candidates j of @p c with 0 < |x_i - x_j| < reach (r_i + r_j),
 /// reach = PairForce::cutoff(1), for globule i at (x, y, z) with velocity v and radius r.
 /// Globule i itself (and any globule at exactly its position, whose force is zero) is
-/// left out. @p out has room for them.
+/// left out. @p out has room for them. <Thermal>: also what @p thermal asks for.
+template <bool Thermal = false>
 inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z, float vx,
-                             float vy, float vz, float r, float reach2, NeighborBatch& out) {
+                             float vy, float vz, float r, float reach2, NeighborBatch& out,
+                             NeighborHeat* thermal = nullptr) {
     uint32_t count = out.count;
     float *bx = out.dx.data(), *by = out.dy.data(), *bz = out.dz.data();
     float* bvp = out.vDotP.data();
@@ -207,7 +231,13 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
     const __m512 px = _mm512_set1_ps(x), py = _mm512_set1_ps(y), pz = _mm512_set1_ps(z);
     const __m512 pvx = _mm512_set1_ps(vx), pvy = _mm512_set1_ps(vy), pvz = _mm512_set1_ps(vz);
     const __m512 pr = _mm512_set1_ps(r), reach2v = _mm512_set1_ps(reach2);
-    const __m512 zero = _mm512_setzero_ps();
+    const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1);
+    __m512 heat = zero, ti = zero, conductance = zero, uniformInvLimit = zero;
+    if constexpr (Thermal) {
+        ti = _mm512_set1_ps(thermal->temperature);
+        conductance = _mm512_set1_ps(thermal->conductance);
+        uniformInvLimit = _mm512_set1_ps(1.0f / ((r + r) * (r + r) * reach2));  // 1 / limit
+    }
     for (uint32_t j = 0; j < end; j += 16) {
         // The padding past count is readable: plain loads, and a masked test.
         const uint32_t left = end - j;
@@ -233,9 +263,19 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
         const __m512 dvz = _mm512_sub_ps(pvz, _mm512_loadu_ps(c.vz.data() + j));
         keep(bvp, _mm512_fmadd_ps(dvz, dz, _mm512_fmadd_ps(dvy, dy, _mm512_mul_ps(dvx, dx))));
         if (!c.uniformRadius) keep(bsum, sum);
+        if constexpr (Thermal) {
+            const __m512 tj = _mm512_loadu_ps(c.temperature.data() + j);
+            if (thermal->keepTemperature) keep(out.temperature.data(), tj);
+            // Division, not an estimate: w_ij must equal w_ji bit for bit.
+            const __m512 invLimit = c.uniformRadius ? uniformInvLimit : _mm512_div_ps(one, limit);
+            const __m512 w = _mm512_fnmadd_ps(d2, invLimit, one);
+            heat = _mm512_mask3_fmadd_ps(_mm512_mul_ps(conductance, w), _mm512_sub_ps(tj, ti), heat, near);
+        }
         count += uint32_t(__builtin_popcount(near));
     }
+    if constexpr (Thermal) thermal->heat = _mm512_reduce_add_ps(heat);
 #else
+    float heat = 0;
     for (uint32_t j = 0; j < end; ++j) {
         const float dx = x - c.x[j], dy = y - c.y[j], dz = z - c.z[j];
         const float d2 = dx * dx + dy * dy + dz * dz;
@@ -245,8 +285,16 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
         bz[count] = dz;
         bvp[count] = (vx - c.vx[j]) * dx + (vy - c.vy[j]) * dy + (vz - c.vz[j]) * dz;
         bsum[count] = sum;
-        count += d2 < sum * sum * reach2 && d2 > 0;
+        const float limit = sum * sum * reach2;
+        const bool near = d2 < limit && d2 > 0;
+        if constexpr (Thermal) {
+            const float tj = c.temperature[j];
+            out.temperature[count] = tj;
+            if (near) heat += thermal->conductance * (1.0f - d2 * (1.0f / limit)) * (tj - thermal->temperature);
+        }
+        count += near;
     }
+    if constexpr (Thermal) thermal->heat = heat;
 #endif
     out.count = count;
     out.uniformSum = c.uniformRadius ? r + r : 0.0f;

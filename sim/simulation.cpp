@@ -35,7 +35,9 @@ Simulation::Simulation(const SimulationSetup& setup)
       mForces(PairTable(setup.materials(), setup.materialPairs),
               ExternalForces{setup.simulation.gravity, setup.ground,
                              ColliderSet(setup.colliders, setup.sceneDir, Simulation::colliderReach(setup),
-                                         setup.simulation.gravity, setup.ground)},
+                                         setup.simulation.gravity, setup.ground),
+                             ThermalSources(setup.thermal, setup.heaters, setup.materials(),
+                                            setup.simulation.gravity, setup.ground)},
               setup.simulation.neighbors == "all_pairs"),
       mIntegrator(makeIntegrator(setup.simulation.integrator)) {
     const std::vector<MaterialSettings> materials = setup.materials();
@@ -89,6 +91,9 @@ void Simulation::emitFrom(std::size_t k, double time) {
     const std::size_t before = mGlobules.size();
     mEmitters[k]->emit(time, mGlobules, mNextId);
     if (!mEmitterMaterials.empty()) mGlobules.material.resize(mGlobules.size(), mEmitterMaterials[k]);
+    if (mSetup.thermal.enabled) {
+        mGlobules.temperature.resize(mGlobules.size(), float(mSetup.emitters[k].temperature));
+    }
     const Globules& g = mGlobules;
     for (std::size_t i = before; i < g.size(); ++i) {
         if (!std::isfinite(g.px[i] + g.py[i] + g.pz[i]) ||
@@ -208,6 +213,14 @@ void Simulation::restoreState(const SimulationState& state) {
     if (!fits) {
         throw Error("saved state's globule materials do not fit the scene's " +
                     std::to_string(materials) + " material(s)");
+    }
+    const bool thermal = mSetup.thermal.enabled;
+    if (thermal ? g.temperature.size() != g.size() : !g.temperature.empty()) {
+        throw Error(thermal ? "saved state has no temperatures, but the scene is thermal"
+                            : "saved state has temperatures, but the scene is not thermal");
+    }
+    if (thermal && !state.carried.x.empty() && state.carried.heat.size() != state.carried.x.size()) {
+        throw Error("saved state's integrator state has no heating rates");
     }
     for (std::size_t b = 0; b < bodies.size(); ++b) bodies[b].state = state.bodies[b];
     mGlobules = state.globules;

@@ -16,6 +16,7 @@
 #include "material.h"
 #include "material_pairs.h"
 #include "simulation_settings.h"
+#include "thermal_settings.h"
 
 namespace globular {
 
@@ -31,6 +32,8 @@ struct SimulationSetup {
     std::vector<ColliderSettings> colliders;  ///< [[collider]]
     std::vector<MaterialSettings> otherMaterials;  ///< [[material]] sections after the first
     std::vector<MaterialPairSettings> materialPairs;  ///< [[material_pair]]
+    ThermalSettings thermal;               ///< [thermal]
+    std::vector<HeaterSettings> heaters;   ///< [[heater]]
 
     /// material, then otherMaterials: globule material k is materials()[k].
     std::vector<MaterialSettings> materials() const;

@@ -12,11 +12,13 @@ namespace globular {
 
 namespace {
 
-// Version 3 adds the dynamic colliders and the globules' materials; version 2 ended with a checksum of everything
-// before it, as 3 does; version 1 had none.
-constexpr char kMagic[8] = {'G', 'L', 'B', 'S', 'T', 'A', 'T', '3'};
-constexpr char kOldMagics[2][8] = {{'G', 'L', 'B', 'S', 'T', 'A', 'T', '1'},
-                                   {'G', 'L', 'B', 'S', 'T', 'A', 'T', '2'}};
+// Version 4 adds the globules' temperatures and their heating rates; 3 added the dynamic
+// colliders and the globules' materials; 2 ended with a checksum of everything before it,
+// as 3 and 4 do; 1 had none.
+constexpr char kMagic[8] = {'G', 'L', 'B', 'S', 'T', 'A', 'T', '4'};
+constexpr char kOldMagics[3][8] = {{'G', 'L', 'B', 'S', 'T', 'A', 'T', '1'},
+                                   {'G', 'L', 'B', 'S', 'T', 'A', 'T', '2'},
+                                   {'G', 'L', 'B', 'S', 'T', 'A', 'T', '3'}};
 /// A rigid body's state as doubles: position, orientation, velocity, angular momentum,
 /// force, torque.
 constexpr std::size_t kBodyDoubles = 19;
@@ -112,9 +114,11 @@ void writeCheckpoint(const std::filesystem::path& path, const Checkpoint& c) {
     }
     w.array(g.id);
     w.array(g.material);
+    w.array(g.temperature);
     w.array(s.carried.x);
     w.array(s.carried.y);
     w.array(s.carried.z);
+    w.array(s.carried.heat);
     std::vector<double> bodies;
     for (const RigidBodyState& b : s.bodies) {
         const Vec3 vectors[] = {b.position, b.velocity, b.angularMomentum, b.force, b.torque};
@@ -164,8 +168,13 @@ void validate(const Checkpoint& c, Reader& r) {
         }
         seen[std::size_t(g.id[i])] = true;
     }
-    for (const auto* a : {&s.carried.x, &s.carried.y, &s.carried.z}) {
+    for (const auto* a : {&s.carried.x, &s.carried.y, &s.carried.z, &s.carried.heat}) {
         if (!a->empty() && a->size() != g.size()) r.fail("integrator state of the wrong size");
+    }
+    for (std::size_t i = 0; i < g.temperature.size(); ++i) {
+        if (!std::isfinite(g.temperature[i])) {
+            r.fail("globule " + std::to_string(i) + " has a non-finite temperature");
+        }
     }
     for (std::size_t b = 0; b < s.bodies.size(); ++b) {
         const RigidBodyState& body = s.bodies[b];
@@ -217,9 +226,11 @@ Checkpoint readCheckpoint(const std::filesystem::path& path) {
     }
     g.id = r.array<int32_t>();
     g.material = r.array<uint8_t>();
+    g.temperature = r.array<float>();
     s.carried.x = r.array<float>();
     s.carried.y = r.array<float>();
     s.carried.z = r.array<float>();
+    s.carried.heat = r.array<float>();
     const std::vector<double> bodies = r.array<double>();
     if (bodies.size() % kBodyDoubles != 0) r.fail("a dynamic collider's state is cut short");
     for (std::size_t at = 0; at < bodies.size(); at += kBodyDoubles) {
@@ -236,7 +247,8 @@ Checkpoint readCheckpoint(const std::filesystem::path& path) {
         if (a->size() != g.px.size()) r.fail("arrays of different lengths");
     }
     if (g.id.size() != g.px.size() || !r.atEnd() ||
-        (!g.material.empty() && g.material.size() != g.px.size())) {
+        (!g.material.empty() && g.material.size() != g.px.size()) ||
+        (!g.temperature.empty() && g.temperature.size() != g.px.size())) {
         r.fail("inconsistent sizes");
     }
     validate(c, r);

@@ -1,5 +1,5 @@
 # Tests of globular_cli: the scene reader and the command, end to end.
-globular_test(scene_test SOURCES scene_test.cpp scene_collider_test.cpp LIBS globular_cli)
+globular_test(scene_test SOURCES scene_test.cpp scene_collider_test.cpp scene_thermal_test.cpp LIBS globular_cli)
 # End-to-end: runs the built executable, so it must be built first.
 globular_test(cli_test SOURCES cli_test.cpp LIBS globular_cli)
 add_dependencies(cli_test globular)

@@ -392,10 +392,20 @@ preset = "solid"
 b1 = 2.25
 m = 6
 n = 2.5
+t_solid = 30
+t_liquid = 45
+
+[material.liquid]
+preset = "liquid"
+b1 = 1.5
 
 [ground]
 enabled = false
 contact = "surface"
+
+[thermal]
+enabled = true
+cooling = 0.5
 
 [output]
 ply = true
@@ -460,7 +470,7 @@ TEST(SceneResolved, ContainsEveryKeyThatApplies) {
             << section.name();
     }
     using Keys = std::set<std::string>;
-    const Keys common = {"type", "radius", "mass", "jitter", "material"};
+    const Keys common = {"type", "radius", "mass", "jitter", "material", "temperature"};
     auto with = [&](Keys extra) {
         extra.insert(common.begin(), common.end());
         return extra;
@@ -478,15 +488,25 @@ TEST(SceneResolved, ContainsEveryKeyThatApplies) {
         }
     }
     EXPECT_EQ(scene.emitters.size(), 3u);
-    ASSERT_EQ(keys.size(), sections.singles.size() + elements);
+    // The phases: each a table of the material's constants (the one not given, its own).
+    const std::set<std::string> constants = {"preset", "r0", "b1", "m", "n", "alpha", "cr", "cd"};
+    EXPECT_EQ(keys.at("material.solid"), constants);
+    EXPECT_EQ(keys.at("material.liquid"), constants);
+    ASSERT_EQ(keys.size(), sections.singles.size() + elements + 2);
     EXPECT_EQ(keys.at("emitter[0]"), with({"count", "velocity", "min", "max", "spacing"}));
     EXPECT_EQ(keys.at("emitter[1]"), with({"count", "center", "spacing", "direction", "speed",
                                            "rate", "nozzle_radius", "start"}));
     EXPECT_EQ(keys.at("emitter[2]"), with({"velocity", "file", "offset"}));
 
+    // Without temperature, its keys are left out: read back, they would be an error.
     const auto defaults = keysBySection(resolvedSceneToml(parse("")));
-    EXPECT_EQ(defaults.at("emitter[0]"),
-              with({"count", "velocity", "center", "helix_radius", "spacing", "turn"}));
+    Keys helix = with({"count", "velocity", "center", "helix_radius", "spacing", "turn"});
+    helix.erase("temperature");
+    EXPECT_EQ(defaults.at("emitter[0]"), helix);
+    EXPECT_EQ(defaults.at("thermal"), Keys{"enabled"});
+    for (const char* key : {"heat_capacity", "conductivity", "expansion", "t_solid", "t_liquid"}) {
+        EXPECT_FALSE(defaults.at("material").count(key)) << key;
+    }
 }
 
 TEST(SceneResolved, NamesTheSourceFile) {

@@ -7,3 +7,4 @@ globular_test(physics_test
             material_pair_test.cpp
     LIBS globular_sim)
 globular_test(mesh_sdf_test SOURCES mesh_sdf_test.cpp LIBS globular_sim)
+globular_test(thermal_test SOURCES thermal_test.cpp LIBS globular_sim)

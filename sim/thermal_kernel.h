@@ -1,0 +1,184 @@
+#pragma once
+// The force loop's pieces for thermal scenes (thermal_settings.h). A globule's neighbours
+// are taken one material at a time, as without temperature (forces.cpp), and for each
+// material the pair (ThermalPair) decides:
+//   - phaseOf: whether every pair the globule forms with that material is solid, every
+//     one liquid, or whether their constants blend by each pair's mean temperature;
+//   - the heat flowing in is summed while the neighbours are collected (NeighborHeat in
+//     pair_kernel.h), which has each pair at hand;
+//   - the force is pair_kernel.h's sumBatch with the phase's constants, or, where pairs
+//     melt, sumBlendedBatch below.
+// The blend is of what the kernel uses, b1, b2, 1/C_r^2 and 1/C_d^2 (and m, n on the
+// generic path), as (1 - s) solid + s liquid: exactly the solid's at s = 0 and exactly
+// the liquid's at s = 1, so the three ways agree bit for bit where they overlap, and
+// every pair is still evaluated from both sides with the same arithmetic: the force
+// stays equal and opposite.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+
+#include "material_pairs.h"
+#include "pair_kernel.h"
+
+namespace globular {
+
+enum class ThermalPhase { Solid, Liquid, Blend };
+
+/// The phase of the pairs a globule at @p ti forms with neighbours whose temperatures lie
+/// within [@p lowest, @p highest].
+inline ThermalPhase phaseOf(const ThermalPair& pair, float ti, float lowest, float highest) {
+    if (pair.invRange == 0 || 0.5f * (ti + highest) <= pair.tSolid) return ThermalPhase::Solid;
+    if (0.5f * (ti + lowest) >= pair.tLiquid) return ThermalPhase::Liquid;
+    return ThermalPhase::Blend;
+}
+
+/// The blend weight s of a pair whose mean temperature is @p t: smoothstep over the
+/// melting range, exactly 0 at or below T_solid and exactly 1 at or above T_liquid.
+inline float meltFraction(float t, const ThermalPair& pair) {
+    if (pair.invRange == 0 || t <= pair.tSolid) return 0.0f;
+    if (t >= pair.tLiquid) return 1.0f;
+    const float x = std::min(1.0f, (t - pair.tSolid) * pair.invRange);
+    return x * x * (3.0f - 2.0f * x);
+}
+
+/// The lowest and highest of @p count temperatures (count > 0).
+inline std::pair<float, float> temperatureRange(const float* t, uint32_t count) {
+#if defined(__AVX512F__)
+    __m512 lo = _mm512_set1_ps(t[0]), hi = lo;
+    for (uint32_t k = 0; k < count; k += 16) {
+        const __m512 v = _mm512_mask_loadu_ps(lo, firstLanes(count - k), t + k);
+        lo = _mm512_min_ps(lo, v);
+        hi = _mm512_max_ps(hi, v);
+    }
+    return {_mm512_reduce_min_ps(lo), _mm512_reduce_max_ps(hi)};
+#else
+    float lo = t[0], hi = t[0];
+    for (uint32_t k = 1; k < count; ++k) {
+        lo = std::min(lo, t[k]);
+        hi = std::max(hi, t[k]);
+    }
+    return {lo, hi};
+#endif
+}
+
+/// Adds to (fx, fy, fz) the force of every neighbour in @p batch (which holds their
+/// temperatures) on a globule at temperature @p ti, each pair's constants blended by its
+/// mean temperature. <M, N>: the exponents both phases share, unrolled; <0, 0>: pow()
+/// with blended exponents.
+template <int M, int N>
+inline void sumBlendedBatch(const ThermalPair& pair, float ti, const NeighborBatch& batch,
+                            float& fx, float& fy, float& fz) {
+    const PairForce &solid = pair.solid, &liquid = pair.liquid;
+    const float minFraction2 = kMinDistanceFraction * kMinDistanceFraction;
+    const float *bx = batch.dx.data(), *by = batch.dy.data(), *bz = batch.dz.data();
+    const float* bvp = batch.vDotP.data();
+    const float* bsum = batch.radiusSum.data();
+    const float* bt = batch.temperature.data();
+    const bool uniform = batch.uniformSum > 0;
+    const uint32_t count = batch.count;
+#if defined(__AVX512F__)
+    if constexpr (M > 0 && N > 0) {
+        const __m512 one = _mm512_set1_ps(1), zero = _mm512_setzero_ps();
+        const __m512 half = _mm512_set1_ps(0.5f), threeHalves = _mm512_set1_ps(1.5f),
+                     two = _mm512_set1_ps(2), three = _mm512_set1_ps(3);
+        const __m512 minF2 = _mm512_set1_ps(minFraction2);
+        const __m512 tI = _mm512_set1_ps(ti);
+        const __m512 tS = _mm512_set1_ps(pair.tSolid), tL = _mm512_set1_ps(pair.tLiquid),
+                     invRange = _mm512_set1_ps(pair.invRange);
+        const __m512 b1S = _mm512_set1_ps(solid.b1), b2S = _mm512_set1_ps(solid.b2),
+                     cr2S = _mm512_set1_ps(1.0f / (solid.cr * solid.cr)),
+                     cd2S = _mm512_set1_ps(1.0f / (solid.cd * solid.cd));
+        const __m512 b1L = _mm512_set1_ps(liquid.b1), b2L = _mm512_set1_ps(liquid.b2),
+                     cr2L = _mm512_set1_ps(1.0f / (liquid.cr * liquid.cr)),
+                     cd2L = _mm512_set1_ps(1.0f / (liquid.cd * liquid.cd));
+        const float fixedSum2 = batch.uniformSum * batch.uniformSum;
+        const __m512 fixedInvSum2 = _mm512_set1_ps(uniform ? 1.0f / fixedSum2 : 0.0f);
+        const __m512 fixedMinD2 = _mm512_set1_ps(minFraction2 * fixedSum2);
+        __m512 ax = zero, ay = zero, az = zero;
+        for (uint32_t k = 0; k < count; k += 16) {
+            const uint32_t left = count - k;
+            const __mmask16 live = firstLanes(left);
+            const __m512 dx = _mm512_maskz_loadu_ps(live, bx + k);
+            const __m512 dy = _mm512_maskz_loadu_ps(live, by + k);
+            const __m512 dz = _mm512_maskz_loadu_ps(live, bz + k);
+            __m512 invSum2 = fixedInvSum2, minD2 = fixedMinD2;
+            if (!uniform) {
+                const __m512 sum = _mm512_mask_loadu_ps(one, live, bsum + k);
+                const __m512 sum2 = _mm512_mul_ps(sum, sum);
+                invSum2 = _mm512_rcp14_ps(sum2);
+                invSum2 = _mm512_mul_ps(invSum2, _mm512_fnmadd_ps(sum2, invSum2, two));
+                minD2 = _mm512_mul_ps(minF2, sum2);
+            }
+            // s: smoothstep of the pair's mean temperature; exactly 1 from T_liquid up,
+            // whatever (t - T_solid) / range rounds to.
+            const __m512 t = _mm512_mul_ps(half, _mm512_add_ps(tI, _mm512_maskz_loadu_ps(live, bt + k)));
+            __m512 x = _mm512_min_ps(one, _mm512_max_ps(zero, _mm512_mul_ps(_mm512_sub_ps(t, tS), invRange)));
+            x = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(t, tL, _CMP_GE_OQ), x, one);
+            const __m512 s = _mm512_mul_ps(_mm512_mul_ps(x, x), _mm512_fnmadd_ps(two, x, three));
+            const __m512 r = _mm512_sub_ps(one, s);
+            const auto blend = [&](__m512 a, __m512 b) { return _mm512_fmadd_ps(s, b, _mm512_mul_ps(r, a)); };
+            const __m512 b1 = blend(b1S, b1L), b2 = blend(b2S, b2L), cr2 = blend(cr2S, cr2L),
+                         cd2 = blend(cd2S, cd2L);
+            const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
+            const __m512 safeD2 = _mm512_max_ps(d2, minD2);
+            __m512 invD = _mm512_rsqrt14_ps(safeD2);
+            invD = _mm512_mul_ps(invD, _mm512_fnmadd_ps(_mm512_mul_ps(half, safeD2),
+                                                        _mm512_mul_ps(invD, invD), threeHalves));
+            const __m512 relative = _mm512_mul_ps(d2, invSum2);
+            const __m512 windowR = _mm512_max_ps(zero, _mm512_fnmadd_ps(relative, cr2, one));
+            const __m512 windowD = _mm512_max_ps(zero, _mm512_fnmadd_ps(relative, cd2, one));
+            const __m512 powN = intPow<N>(invD);
+            const __m512 powM = M > N ? _mm512_mul_ps(powN, intPow<(M > N ? M - N : 1)>(invD))
+                                      : intPow<M>(invD);
+            const __m512 radial = _mm512_fmsub_ps(b1, powM, _mm512_mul_ps(b2, powN));
+            const __m512 vDotP = _mm512_maskz_loadu_ps(live, bvp + k);
+            const __m512 drag = _mm512_mul_ps(_mm512_mul_ps(windowD, vDotP),
+                                              _mm512_mul_ps(invD, invD));
+            const __m512 scale = _mm512_fmsub_ps(windowR, radial, drag);
+            ax = _mm512_mask3_fmadd_ps(scale, dx, ax, live);
+            ay = _mm512_mask3_fmadd_ps(scale, dy, ay, live);
+            az = _mm512_mask3_fmadd_ps(scale, dz, az, live);
+        }
+        fx += _mm512_reduce_add_ps(ax);
+        fy += _mm512_reduce_add_ps(ay);
+        fz += _mm512_reduce_add_ps(az);
+        return;
+    }
+#endif
+    const float cr2S = 1.0f / (solid.cr * solid.cr), cd2S = 1.0f / (solid.cd * solid.cd);
+    const float cr2L = 1.0f / (liquid.cr * liquid.cr), cd2L = 1.0f / (liquid.cd * liquid.cd);
+    float ax = 0, ay = 0, az = 0;
+    for (uint32_t k = 0; k < count; ++k) {
+        const float s = meltFraction(0.5f * (ti + bt[k]), pair), r = 1.0f - s;
+        const auto blend = [&](float a, float b) { return s * b + r * a; };
+        const float b1 = blend(solid.b1, liquid.b1), b2 = blend(solid.b2, liquid.b2);
+        const float cr2 = blend(cr2S, cr2L), cd2 = blend(cd2S, cd2L);
+        const float dx = bx[k], dy = by[k], dz = bz[k];
+        const float sum = uniform ? batch.uniformSum : bsum[k];
+        const float d2 = dx * dx + dy * dy + dz * dz;
+        const float safeD2 = std::max(d2, minFraction2 * sum * sum);
+        const float distance = std::sqrt(safeD2);
+        const float invD = 1.0f / distance;
+        const float relative = d2 / (sum * sum);
+        const float windowR = std::max(0.0f, 1.0f - relative * cr2);
+        const float windowD = std::max(0.0f, 1.0f - relative * cd2);
+        float radial;
+        if constexpr (M > 0 && N > 0) {
+            radial = b1 * PairForce::intPow(invD, M) - b2 * PairForce::intPow(invD, N);
+        } else {
+            radial = b1 * std::pow(distance, -blend(solid.m, liquid.m)) -
+                     b2 * std::pow(distance, -blend(solid.n, liquid.n));
+        }
+        const float scale = windowR * radial - windowD * bvp[k] * (invD * invD);
+        ax += scale * dx;
+        ay += scale * dy;
+        az += scale * dz;
+    }
+    fx += ax;
+    fy += ay;
+    fz += az;
+}
+
+}  // namespace globular
