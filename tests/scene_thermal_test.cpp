@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "errors.h"
 #include "reporter.h"
 #include "scene.h"
@@ -93,6 +95,25 @@ TEST(SceneThermal, BadThermalKeysNameFileLineAndKey) {
               "lamp.toml: [material.solid]: phases need temperature; set [thermal] enabled = true");
     EXPECT_EQ(parseError("[[heater]]\npower = 2\n"),
               "lamp.toml: [[heater]]: heaters need temperature; set [thermal] enabled = true");
+}
+
+}  // namespace
+}  // namespace globular
+
+namespace globular {
+namespace {
+
+/// Every scene shipped in scenes/ reads without an error (with its mesh files).
+TEST(ShippedScenes, EveryOneReads) {
+    std::size_t read = 0;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(
+             std::filesystem::path(GLOBULAR_SOURCE_DIR) / "scenes")) {
+        if (entry.path().extension() != ".toml") continue;
+        NullReporter quiet;
+        EXPECT_NO_THROW(loadScene(entry.path(), {}, quiet)) << entry.path();
+        ++read;
+    }
+    EXPECT_GE(read, 20u);
 }
 
 }  // namespace
