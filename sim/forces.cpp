@@ -453,10 +453,7 @@ void pairForcesGrid(const Globules& g, const PairForce& pair, NeighborWorkspace&
 }
 
 float groundForce(const GroundSettings& ground, float y, float vy, float radius) {
-    const float contactY = ground.contact == "surface" ? y - radius : y;
-    const float depth = contactY - float(ground.height);  // (x_p - p_g) . N_g
-    if (depth >= 0.0f) return 0.0f;
-    return -float(ground.ks) * depth - float(ground.kd) * vy;
+    return GroundPenalty(ground).force(y, vy, radius);
 }
 
 void ForceField::addExternalWithColliders(const Globules& g, std::size_t i,
@@ -466,7 +463,7 @@ void ForceField::addExternalWithColliders(const Globules& g, std::size_t i,
     const double mass = g.mass[i], radius = g.radius[i];
     const Vec3 p{g.px[i], g.py[i], g.pz[i]}, v{g.vx[i], g.vy[i], g.vz[i]};
     Vec3 f{out.x[i], out.y[i], out.z[i]};
-    if (mExternal.ground.enabled) f.y += groundForce(mExternal.ground, g.py[i], g.vy[i], g.radius[i]);
+    if (mGround.enabled) f.y += mGround.force(g.py[i], g.vy[i], g.radius[i]);
     f = f + mass * mExternal.gravity;
     const ColliderSet& colliders = mExternal.colliders;
     for (std::size_t k = 0; k < colliders.size(); ++k) {
@@ -487,8 +484,7 @@ void ForceField::addExternalWithColliders(const Globules& g, std::size_t i,
 
 void ForceField::addGravityAndGround(const Globules& g, std::size_t i, Accelerations& out) const {
     float fy = out.y[i];
-    const GroundSettings& ground = mExternal.ground;
-    if (ground.enabled) fy += groundForce(ground, g.py[i], g.vy[i], g.radius[i]);
+    if (mGround.enabled) fy += mGround.force(g.py[i], g.vy[i], g.radius[i]);
     const float invMass = 1.0f / g.mass[i];
     out.x[i] = out.x[i] * invMass + float(mExternal.gravity.x);
     out.y[i] = fy * invMass + float(mExternal.gravity.y);

@@ -76,14 +76,34 @@ void pairForcesAllPairs(const Globules& globules, const PairTable& pairs, Accele
 /// The ground's penalty force of eq. (9) on one globule, y component (normal +y).
 float groundForce(const GroundSettings& ground, float y, float vy, float radius);
 
+/// The ground's constants as the per-globule loops read them: no string compares there.
+struct GroundPenalty {
+    bool enabled = false, atSurface = false;
+    float height = 0, ks = 0, kd = 0;
+
+    explicit GroundPenalty(const GroundSettings& ground)
+        : enabled(ground.enabled),
+          atSurface(ground.contact == "surface"),
+          height(float(ground.height)),
+          ks(float(ground.ks)),
+          kd(float(ground.kd)) {}
+    /// groundForce of these constants.
+    float force(float y, float vy, float radius) const {
+        const float depth = (atSurface ? y - radius : y) - height;  // (x_p - p_g) . N_g
+        if (depth >= 0.0f) return 0.0f;
+        return -ks * depth - kd * vy;
+    }
+};
+
 /// Computes accelerations for a whole system; owns the neighbour grid between calls.
 class ForceField {
 public:
     ForceField(PairForce pair, ExternalForces external, bool allPairs = false)
-        : mPairs(pair), mExternal(std::move(external)), mAllPairs(allPairs) {}
+        : mPairs(pair), mExternal(std::move(external)), mGround(mExternal.ground), mAllPairs(allPairs) {}
     /// Several materials: @p pairs gives each pair's constants.
     ForceField(PairTable pairs, ExternalForces external, bool allPairs = false)
-        : mPairs(std::move(pairs)), mExternal(std::move(external)), mAllPairs(allPairs) {}
+        : mPairs(std::move(pairs)), mExternal(std::move(external)), mGround(mExternal.ground),
+          mAllPairs(allPairs) {}
 
     /// Fills @p out for @p globules, which the grid method reorders first (see
     /// pairForcesSorting); @p out is in their new order.
@@ -115,6 +135,7 @@ private:
 
     PairTable mPairs;
     ExternalForces mExternal;
+    GroundPenalty mGround;  ///< mExternal.ground, ready for the loops
     bool mAllPairs;
     NeighborWorkspace mWorkspace;
     double mStepSeconds = 0;

@@ -227,27 +227,34 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
     float* bvp = out.vDotP.data();
     float* bsum = out.radiusSum.data();
     const uint32_t end = c.count;
+    // Locals, not members: the vector stores below may alias anything, so members would
+    // be reloaded on every pass.
+    const float *cx = c.x.data(), *cy = c.y.data(), *cz = c.z.data();
+    const float *cvx = c.vx.data(), *cvy = c.vy.data(), *cvz = c.vz.data();
+    const float *cr = c.radius.data(), *ct = c.temperature.data();
+    const bool uniformRadius = c.uniformRadius;
+    const bool keepTemperature = Thermal && thermal->keepTemperature;
+    float* bt = out.temperature.data();
 #if defined(__AVX512F__)
     const __m512 px = _mm512_set1_ps(x), py = _mm512_set1_ps(y), pz = _mm512_set1_ps(z);
     const __m512 pvx = _mm512_set1_ps(vx), pvy = _mm512_set1_ps(vy), pvz = _mm512_set1_ps(vz);
     const __m512 pr = _mm512_set1_ps(r), reach2v = _mm512_set1_ps(reach2);
     const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1);
-    __m512 heat = zero, ti = zero, conductance = zero, uniformInvLimit = zero;
+    __m512 heat = zero, ti = zero, uniformInvLimit = zero;
     if constexpr (Thermal) {
         ti = _mm512_set1_ps(thermal->temperature);
-        conductance = _mm512_set1_ps(thermal->conductance);
         uniformInvLimit = _mm512_set1_ps(1.0f / ((r + r) * (r + r) * reach2));  // 1 / limit
     }
     for (uint32_t j = 0; j < end; j += 16) {
         // The padding past count is readable: plain loads, and a masked test.
         const uint32_t left = end - j;
         const __mmask16 live = firstLanes(left);
-        const __m512 dx = _mm512_sub_ps(px, _mm512_loadu_ps(c.x.data() + j));
-        const __m512 dy = _mm512_sub_ps(py, _mm512_loadu_ps(c.y.data() + j));
-        const __m512 dz = _mm512_sub_ps(pz, _mm512_loadu_ps(c.z.data() + j));
+        const __m512 dx = _mm512_sub_ps(px, _mm512_loadu_ps(cx + j));
+        const __m512 dy = _mm512_sub_ps(py, _mm512_loadu_ps(cy + j));
+        const __m512 dz = _mm512_sub_ps(pz, _mm512_loadu_ps(cz + j));
         const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
         const __m512 sum =
-            _mm512_add_ps(pr, c.uniformRadius ? pr : _mm512_loadu_ps(c.radius.data() + j));
+            _mm512_add_ps(pr, uniformRadius ? pr : _mm512_loadu_ps(cr + j));
         const __m512 limit = _mm512_mul_ps(_mm512_mul_ps(sum, sum), reach2v);
         const __mmask16 near = _mm512_mask_cmp_ps_mask(live, d2, limit, _CMP_LT_OQ) &
                                _mm512_cmp_ps_mask(d2, zero, _CMP_GT_OQ);
@@ -258,43 +265,43 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
         keep(bx, dx);
         keep(by, dy);
         keep(bz, dz);
-        const __m512 dvx = _mm512_sub_ps(pvx, _mm512_loadu_ps(c.vx.data() + j));
-        const __m512 dvy = _mm512_sub_ps(pvy, _mm512_loadu_ps(c.vy.data() + j));
-        const __m512 dvz = _mm512_sub_ps(pvz, _mm512_loadu_ps(c.vz.data() + j));
+        const __m512 dvx = _mm512_sub_ps(pvx, _mm512_loadu_ps(cvx + j));
+        const __m512 dvy = _mm512_sub_ps(pvy, _mm512_loadu_ps(cvy + j));
+        const __m512 dvz = _mm512_sub_ps(pvz, _mm512_loadu_ps(cvz + j));
         keep(bvp, _mm512_fmadd_ps(dvz, dz, _mm512_fmadd_ps(dvy, dy, _mm512_mul_ps(dvx, dx))));
-        if (!c.uniformRadius) keep(bsum, sum);
+        if (!uniformRadius) keep(bsum, sum);
         if constexpr (Thermal) {
-            const __m512 tj = _mm512_loadu_ps(c.temperature.data() + j);
-            if (thermal->keepTemperature) keep(out.temperature.data(), tj);
+            const __m512 tj = _mm512_loadu_ps(ct + j);
+            if (keepTemperature) keep(bt, tj);
             // Division, not an estimate: w_ij must equal w_ji bit for bit.
-            const __m512 invLimit = c.uniformRadius ? uniformInvLimit : _mm512_div_ps(one, limit);
+            const __m512 invLimit = uniformRadius ? uniformInvLimit : _mm512_div_ps(one, limit);
             const __m512 w = _mm512_fnmadd_ps(d2, invLimit, one);
-            heat = _mm512_mask3_fmadd_ps(_mm512_mul_ps(conductance, w), _mm512_sub_ps(tj, ti), heat, near);
+            heat = _mm512_mask3_fmadd_ps(w, _mm512_sub_ps(tj, ti), heat, near);  // k after the sum
         }
         count += uint32_t(__builtin_popcount(near));
     }
-    if constexpr (Thermal) thermal->heat = _mm512_reduce_add_ps(heat);
+    if constexpr (Thermal) thermal->heat = thermal->conductance * _mm512_reduce_add_ps(heat);
 #else
     float heat = 0;
     for (uint32_t j = 0; j < end; ++j) {
-        const float dx = x - c.x[j], dy = y - c.y[j], dz = z - c.z[j];
+        const float dx = x - cx[j], dy = y - cy[j], dz = z - cz[j];
         const float d2 = dx * dx + dy * dy + dz * dz;
-        const float sum = r + (c.uniformRadius ? r : c.radius[j]);
+        const float sum = r + (uniformRadius ? r : cr[j]);
         bx[count] = dx;
         by[count] = dy;
         bz[count] = dz;
-        bvp[count] = (vx - c.vx[j]) * dx + (vy - c.vy[j]) * dy + (vz - c.vz[j]) * dz;
+        bvp[count] = (vx - cvx[j]) * dx + (vy - cvy[j]) * dy + (vz - cvz[j]) * dz;
         bsum[count] = sum;
         const float limit = sum * sum * reach2;
         const bool near = d2 < limit && d2 > 0;
         if constexpr (Thermal) {
-            const float tj = c.temperature[j];
-            out.temperature[count] = tj;
-            if (near) heat += thermal->conductance * (1.0f - d2 * (1.0f / limit)) * (tj - thermal->temperature);
+            const float tj = ct[j];
+            if (keepTemperature) bt[count] = tj;
+            if (near) heat += (1.0f - d2 * (1.0f / limit)) * (tj - thermal->temperature);
         }
         count += near;
     }
-    if constexpr (Thermal) thermal->heat = heat;
+    if constexpr (Thermal) thermal->heat = thermal->conductance * heat;
 #endif
     out.count = count;
     out.uniformSum = c.uniformRadius ? r + r : 0.0f;

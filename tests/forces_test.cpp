@@ -99,7 +99,7 @@ TEST(Forces, GroundHoldsARestingGlobuleAtTheExpectedDepth) {
         GroundSettings ground;
         ground.contact = contact;
         ForceField field(PairForce::fromMaterial(MaterialSettings{}),
-                         ExternalForces{{0, -9.8, 0}, ground, {}});
+                         ExternalForces{{0, -9.8, 0}, ground, {}, {}});
         Globules g;
         g.add({0, 1.5, 0}, {0, 0, 0}, 0.5f, 1.0f, 0);
         SemiImplicitEuler integrator;

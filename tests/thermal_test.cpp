@@ -114,7 +114,7 @@ TEST(Thermal, NewtonCoolingFollowsTheExponential) {
     ThermalSettings t = thermalOn();
     t.ambient = 20;
     t.cooling = 0.8;
-    const std::vector<MaterialSettings> materials = {MaterialSettings{}};
+    const std::vector<MaterialSettings> materials(1);
     ForceField field(PairTable(materials, {}), weightless(materials, t));
     Globules g;
     g.add({0, 0, 0}, {0, 0, 0}, 0.5f, 1.0f, 0);
