@@ -111,7 +111,8 @@ void runScene(const RunOptions& options, Reporter& reporter) {
     if (wants(options.stages, "surface")) {
         reporter.info("surface: frames " + std::to_string(range.first) + "-" +
                       std::to_string(range.last));
-        runSurfaceStage(scene.surface, ctx, scene.colliderScene(), scene.simulation.fps);
+        runSurfaceStage(scene.surface, ctx, scene.colliderScene(), scene.simulation.fps,
+                        !scene.otherMaterials.empty());
     }
     if (wants(options.stages, "render")) {
         reporter.info("render: frames " + std::to_string(range.first) + "-" +

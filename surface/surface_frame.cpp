@@ -12,7 +12,7 @@
 namespace globular {
 
 SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& settings,
-                             const std::vector<PlacedSolid>& colliders) {
+                             const std::vector<PlacedSolid>& colliders, bool severalMaterials) {
     settings.validate();
     openvdb::initialize();
 
@@ -60,7 +60,7 @@ SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& se
         [&] {
             frame.mesh = meshLevelSet(*levelSet, settings.adaptivity);
             carryGlobuleAttributes(frame.mesh, globules, kernel, settings.influence,
-                                   frame.voxelSize, attributesOf(globules));
+                                   frame.voxelSize, attributesOf(globules, severalMaterials));
         });
 
     // Provenance for whoever opens the file in a DCC tool.
@@ -132,7 +132,9 @@ SurfaceGrids readSurfaceVdb(const std::filesystem::path& path) {
         parseVdbInChild(path, kMaxSurfaceFileBytes, [&] { return parseSurfaceFile(path); });
     try {
         const auto grids = decodeStreamedVdb(answer);
-        SurfaceGrids read{floatGridNamed(*grids, "surface"), floatGridNamed(*grids, "density")};
+        SurfaceGrids read;
+        read.surface = floatGridNamed(*grids, "surface");
+        read.density = floatGridNamed(*grids, "density");
         if (grids->size() > 2) read.temperature = floatGridNamed(*grids, "temperature");
         return read;
     } catch (const std::exception& e) {

@@ -38,8 +38,11 @@ struct SurfaceFrame {
 /// @throw SceneError when @p settings are invalid; SimulationError for a non-finite
 ///        globule or collider pose; ResourceError for a globule beyond the grid's
 ///        coordinate range.
+/// @param severalMaterials the scene has several: the mesh carries `material` on every
+///        frame (vertex_attributes.h).
 SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& settings,
-                             const std::vector<PlacedSolid>& colliders = {});
+                             const std::vector<PlacedSolid>& colliders = {},
+                             bool severalMaterials = false);
 
 /// Writes the grids "surface", "density" and (when made) "temperature" of @p frame to one
 /// VDB file, atomically.

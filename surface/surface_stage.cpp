@@ -86,7 +86,7 @@ SurfaceEstimate checkAllFrames(const SurfaceSettings& settings, const StageConte
 }  // namespace
 
 void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx,
-                     const ColliderScene& colliders, double fps) {
+                     const ColliderScene& colliders, double fps, bool severalMaterials) {
     settings.validate();
     if (ctx.firstFrame < 1 || ctx.lastFrame < ctx.firstFrame) {
         throw SceneError("surface stage: frame range " + std::to_string(ctx.firstFrame) + "-" +
@@ -146,7 +146,8 @@ void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx,
                     for (std::size_t k = 0; k < poses.size(); ++k) {
                         placed.push_back({&solids[k], poses[k]});
                     }
-                    const SurfaceFrame frame = surfaceGlobules(globules, settings, placed);
+                    const SurfaceFrame frame =
+                        surfaceGlobules(globules, settings, placed, severalMaterials);
                     writeSurfaceVdb(surfaceVdbPath(ctx.outDir, f), frame);
                     writeSurfaceMesh(meshPath(ctx.outDir, f, settings.meshFormat), frame.mesh,
                                      settings.meshFormat);

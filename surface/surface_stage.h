@@ -32,7 +32,9 @@ namespace globular {
 /// on the frame (collider_poses.h: the sim stage's, or the keyframes' at (frame - 1) /
 /// @p fps), in world coordinates, so a DCC tool places the set with the liquid as a mesh
 /// sequence.
+/// @p severalMaterials: the scene has more than one material (surfaceGlobules).
 void runSurfaceStage(const SurfaceSettings& settings, const StageContext& ctx,
-                     const ColliderScene& colliders = {}, double fps = 25);
+                     const ColliderScene& colliders = {}, double fps = 25,
+                     bool severalMaterials = false);
 
 }  // namespace globular

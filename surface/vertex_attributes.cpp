@@ -47,10 +47,10 @@ void gather(const GlobuleBins& bins, const MetaballKernel& kernel, const double 
 
 }  // namespace
 
-CarriedAttributes attributesOf(const Globules& globules) {
+CarriedAttributes attributesOf(const Globules& globules, bool severalMaterials) {
     CarriedAttributes which;
     which.temperature = !globules.temperature.empty();
-    which.material = std::any_of(globules.material.begin(), globules.material.end(),
+    which.material = severalMaterials || std::any_of(globules.material.begin(), globules.material.end(),
                                  [](uint8_t m) { return m != 0; });
     return which;
 }

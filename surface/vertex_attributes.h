@@ -25,9 +25,10 @@ struct CarriedAttributes {
     bool any() const { return temperature || material; }
 };
 
-/// What @p globules carry: temperature when they have one, material when some globule's
-/// material index is not 0 (a scene of one material leaves it out).
-CarriedAttributes attributesOf(const Globules& globules);
+/// What @p globules carry: temperature when they have one, material when the scene has
+/// @p severalMaterials or some globule's material index is not 0 (so every frame of a
+/// scene of several materials carries it, and a scene of one leaves it out).
+CarriedAttributes attributesOf(const Globules& globules, bool severalMaterials = false);
 
 /// Appends the attributes @p which to @p mesh.attributes, one value per vertex. Parallel
 /// over vertices, each summing its globules in a fixed order: identical for any thread

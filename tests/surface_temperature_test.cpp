@@ -135,6 +135,16 @@ TEST(SurfaceTemperature, MeshVerticesCarryTemperatureAndMaterial) {
     EXPECT_EQ(back.attribute("material")->values, m->values);
 }
 
+TEST(SurfaceTemperature, EveryFrameOfSeveralMaterialsCarriesMaterial) {
+    Globules g;
+    addBlob(g, {0, 0, 0}, 3, 20.0f, 0);  // only material 0 on this frame
+    EXPECT_EQ(surfaceGlobules(g, coarse()).mesh.attribute("material"), nullptr);
+    const SurfaceFrame frame = surfaceGlobules(g, coarse(), {}, /*severalMaterials=*/true);
+    const VertexAttribute* m = frame.mesh.attribute("material");
+    ASSERT_NE(m, nullptr);
+    for (float v : m->values) EXPECT_EQ(v, 0.0f);
+}
+
 TEST(SurfaceTemperature, PlainGlobulesGetNeitherGridNorAttributes) {
     Globules g;
     addBlob(g, {0, 0, 0}, 3, 20.0f, 0);
