@@ -15,6 +15,9 @@
 
 #include "cli_runner.h"
 #include "errors.h"
+#include "globule_cache.h"
+#include "surface_frame.h"
+#include "surface_grids.h"
 #include "reporter.h"
 #include "scene.h"
 
@@ -206,6 +209,32 @@ TEST_F(Cli, QuietStillPrintsWarnings) {
     EXPECT_EQ(r.err,
               "warning: --set material.b1=3.5: [material] key 'b1': b1 = 3.500000 is outside "
               "the paper's stable range [1, 3]\n");
+}
+
+TEST_F(CliTest, TemperatureTravelsThroughEveryStage) {
+    // A warm blob dropped on a hot plate: the caches carry temperatures, the surface file
+    // a temperature grid, the mesh per-vertex temperature and material, and the frames
+    // are coloured by temperature.
+    writeScene("hot.toml",
+               "[simulation]\nframes = 4\n[thermal]\nenabled = true\n"
+               "ground_temperature = 200\nground_transfer = 20\n"
+               "[[material]]\nname = \"wax\"\nt_solid = 40\nt_liquid = 60\n"
+               "[material.solid]\npreset = \"solid\"\n[[material]]\nname = \"oil\"\n"
+               "[[emitter]]\ncount = 40\ntemperature = 30\ncenter = [0.0, 0.0, 0.0]\n"
+               "[[emitter]]\ncount = 40\nmaterial = \"oil\"\ncenter = [1.5, 0.0, 0.0]\n"
+               "[render]\nwidth = 160\nheight = 90\ncolor_by = \"temperature\"\n");
+    const RunResult all = run("run hot.toml --out out");
+    ASSERT_EQ(all.status, 0) << all.err;
+    const Globules last = readGlobuleVdb(mDir / "out/cache/globules.0004.vdb");
+    ASSERT_EQ(last.temperature.size(), 80u);
+    EXPECT_GT(*std::max_element(last.temperature.begin(), last.temperature.end()), 40.0f);
+    EXPECT_TRUE(readSurfaceVdb(mDir / "out/surface/surface.0004.vdb").temperature);
+    const TriangleMesh mesh = readMeshPly(mDir / "out/mesh/surface.0004.ply");
+    EXPECT_TRUE(mesh.attribute("temperature") && mesh.attribute("material"));
+    EXPECT_TRUE(std::filesystem::exists(mDir / "out/frames/frame.0004.png"));
+    // The resolved scene runs again as it is.
+    const RunResult again = run("run out/scene.toml --out again --stages sim");
+    EXPECT_EQ(again.status, 0) << again.err;
 }
 
 }  // namespace

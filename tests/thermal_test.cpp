@@ -192,6 +192,33 @@ TEST(Thermal, BlendIsExactlyTheSolidAtTSolidAndTheLiquidAtTLiquid) {
     EXPECT_FLOAT_EQ(meltFraction(45, pair), 0.15625f);  // x = 1/4: 3/16 - 2/64
 }
 
+TEST(Thermal, PairPhasesAreSymmetric) {
+    MaterialSettings other = wax("b");
+    other.tSolid = 10;
+    other.tLiquid = 90;
+    other.solid.b1 = 3;
+    other.conductivity = 2;
+    MaterialSettings plain;
+    plain.name = "c";
+    plain.conductivity = 0;  // insulates: no heat flows to or from it
+    const PairTable table({wax("a"), other, plain}, {});
+    for (std::size_t a = 0; a < 3; ++a) {
+        for (std::size_t b = 0; b < 3; ++b) {
+            const ThermalPair &ab = table.thermal(a, b), &ba = table.thermal(b, a);
+            EXPECT_EQ(ab.solid.b1, ba.solid.b1);
+            EXPECT_EQ(ab.liquid.cd, ba.liquid.cd);
+            EXPECT_EQ(ab.tSolid, ba.tSolid);
+            EXPECT_EQ(ab.tLiquid, ba.tLiquid);
+            EXPECT_EQ(ab.conductance, ba.conductance);
+        }
+    }
+    EXPECT_FLOAT_EQ(table.thermal(0, 1).tSolid, 25);   // the mean of the two ranges
+    EXPECT_FLOAT_EQ(table.thermal(0, 1).tLiquid, 75);
+    EXPECT_FLOAT_EQ(table.thermal(0, 1).conductance, 2 * 1 * 2 / 3.0f);  // harmonic mean
+    EXPECT_EQ(table.thermal(0, 2).conductance, 0.0f);
+    EXPECT_FLOAT_EQ(table.thermal(0, 2).tSolid, 40);  // the one with phases gives its range
+}
+
 TEST(Thermal, GridLoopMatchesTheAllPairsReference) {
     MaterialSettings other = wax("b");
     other.tSolid = 20;
