@@ -333,6 +333,37 @@ inline __m512 intPow(__m512 x) {
         return _mm512_mul_ps(x, intPow<K - 1>(x));
     }
 }
+
+/// 1 / (r_i + r_j)^2 and the smallest squared distance the force takes, for 16 radius
+/// sums @p sum.
+inline void radiusSumTerms(__m512 sum, __m512& invSum2, __m512& minD2) {
+    const __m512 sum2 = _mm512_mul_ps(sum, sum);
+    invSum2 = _mm512_rcp14_ps(sum2);  // one Newton step: ~full precision
+    invSum2 = _mm512_mul_ps(invSum2, _mm512_fnmadd_ps(sum2, invSum2, _mm512_set1_ps(2)));
+    minD2 = _mm512_mul_ps(_mm512_set1_ps(kMinDistanceFraction * kMinDistanceFraction), sum2);
+}
+
+/// What eq. (2)-(5) multiply P by, for 16 pairs: @p d2 = |P|^2 (taken as @p minD2 where
+/// smaller), @p invSum2 = 1 / (r_i + r_j)^2, the constants b1, b2, 1/C_r^2 (@p cr2) and
+/// 1/C_d^2 (@p cd2), and V.P. 1/D from rsqrt14 and one Newton step: no divisions.
+template <int M, int N>
+inline __m512 pairScale(__m512 d2, __m512 invSum2, __m512 minD2, __m512 b1, __m512 b2,
+                        __m512 cr2, __m512 cd2, __m512 vDotP) {
+    const __m512 one = _mm512_set1_ps(1), zero = _mm512_setzero_ps();
+    const __m512 safeD2 = _mm512_max_ps(d2, minD2);
+    __m512 invD = _mm512_rsqrt14_ps(safeD2);
+    invD = _mm512_mul_ps(invD, _mm512_fnmadd_ps(_mm512_mul_ps(_mm512_set1_ps(0.5f), safeD2),
+                                                _mm512_mul_ps(invD, invD), _mm512_set1_ps(1.5f)));
+    const __m512 relative = _mm512_mul_ps(d2, invSum2);
+    const __m512 windowR = _mm512_max_ps(zero, _mm512_fnmadd_ps(relative, cr2, one));
+    const __m512 windowD = _mm512_max_ps(zero, _mm512_fnmadd_ps(relative, cd2, one));
+    const __m512 powN = intPow<N>(invD);
+    const __m512 powM = M > N ? _mm512_mul_ps(powN, intPow<(M > N ? M - N : 1)>(invD))
+                              : intPow<M>(invD);
+    const __m512 radial = _mm512_fmsub_ps(b1, powM, _mm512_mul_ps(b2, powN));
+    const __m512 drag = _mm512_mul_ps(_mm512_mul_ps(windowD, vDotP), _mm512_mul_ps(invD, invD));
+    return _mm512_fmsub_ps(windowR, radial, drag);
+}
 #endif
 
 /// Adds to (fx, fy, fz) the force of eq. (2) from every neighbour in @p batch.
@@ -349,11 +380,8 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
 #if defined(__AVX512F__)
     if constexpr (M > 0 && N > 0) {
         const __m512 one = _mm512_set1_ps(1), zero = _mm512_setzero_ps();
-        const __m512 half = _mm512_set1_ps(0.5f), threeHalves = _mm512_set1_ps(1.5f),
-                     two = _mm512_set1_ps(2);
         const __m512 cr2 = _mm512_set1_ps(invCr2), cd2 = _mm512_set1_ps(invCd2);
         const __m512 b1 = _mm512_set1_ps(p.b1), b2 = _mm512_set1_ps(p.b2);
-        const __m512 minF2 = _mm512_set1_ps(minFraction2);
         const float fixedSum2 = batch.uniformSum * batch.uniformSum;
         const __m512 fixedInvSum2 = _mm512_set1_ps(uniform ? 1.0f / fixedSum2 : 0.0f);
         const __m512 fixedMinD2 = _mm512_set1_ps(minFraction2 * fixedSum2);
@@ -368,28 +396,11 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
                 const __m512 dz = _mm512_maskz_loadu_ps(live, bz + k);
                 __m512 invSum2 = fixedInvSum2, minD2 = fixedMinD2;
                 if constexpr (!Uniform) {
-                    const __m512 sum = _mm512_mask_loadu_ps(one, live, bsum + k);
-                    const __m512 sum2 = _mm512_mul_ps(sum, sum);
-                    invSum2 = _mm512_rcp14_ps(sum2);  // one Newton step: ~full precision
-                    invSum2 = _mm512_mul_ps(invSum2, _mm512_fnmadd_ps(sum2, invSum2, two));
-                    minD2 = _mm512_mul_ps(minF2, sum2);
+                    radiusSumTerms(_mm512_mask_loadu_ps(one, live, bsum + k), invSum2, minD2);
                 }
                 const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
-                const __m512 safeD2 = _mm512_max_ps(d2, minD2);
-                __m512 invD = _mm512_rsqrt14_ps(safeD2);
-                invD = _mm512_mul_ps(invD, _mm512_fnmadd_ps(_mm512_mul_ps(half, safeD2),
-                                                            _mm512_mul_ps(invD, invD), threeHalves));
-                const __m512 relative = _mm512_mul_ps(d2, invSum2);
-                const __m512 windowR = _mm512_max_ps(zero, _mm512_fnmadd_ps(relative, cr2, one));
-                const __m512 windowD = _mm512_max_ps(zero, _mm512_fnmadd_ps(relative, cd2, one));
-                const __m512 powN = intPow<N>(invD);
-                const __m512 powM = M > N ? _mm512_mul_ps(powN, intPow<(M > N ? M - N : 1)>(invD))
-                                          : intPow<M>(invD);
-                const __m512 radial = _mm512_fmsub_ps(b1, powM, _mm512_mul_ps(b2, powN));
-                const __m512 vDotP = _mm512_maskz_loadu_ps(live, bvp + k);
-                const __m512 drag = _mm512_mul_ps(_mm512_mul_ps(windowD, vDotP),
-                                                  _mm512_mul_ps(invD, invD));
-                const __m512 scale = _mm512_fmsub_ps(windowR, radial, drag);
+                const __m512 scale = pairScale<M, N>(d2, invSum2, minD2, b1, b2, cr2, cd2,
+                                                     _mm512_maskz_loadu_ps(live, bvp + k));
                 ax = _mm512_mask3_fmadd_ps(scale, dx, ax, live);
                 ay = _mm512_mask3_fmadd_ps(scale, dy, ay, live);
                 az = _mm512_mask3_fmadd_ps(scale, dz, az, live);

@@ -81,9 +81,7 @@ inline void sumBlendedBatch(const ThermalPair& pair, float ti, const NeighborBat
 #if defined(__AVX512F__)
     if constexpr (M > 0 && N > 0) {
         const __m512 one = _mm512_set1_ps(1), zero = _mm512_setzero_ps();
-        const __m512 half = _mm512_set1_ps(0.5f), threeHalves = _mm512_set1_ps(1.5f),
-                     two = _mm512_set1_ps(2), three = _mm512_set1_ps(3);
-        const __m512 minF2 = _mm512_set1_ps(minFraction2);
+        const __m512 half = _mm512_set1_ps(0.5f), two = _mm512_set1_ps(2), three = _mm512_set1_ps(3);
         const __m512 tI = _mm512_set1_ps(ti);
         const __m512 tS = _mm512_set1_ps(pair.tSolid), tL = _mm512_set1_ps(pair.tLiquid),
                      invRange = _mm512_set1_ps(pair.invRange);
@@ -104,13 +102,7 @@ inline void sumBlendedBatch(const ThermalPair& pair, float ti, const NeighborBat
             const __m512 dy = _mm512_maskz_loadu_ps(live, by + k);
             const __m512 dz = _mm512_maskz_loadu_ps(live, bz + k);
             __m512 invSum2 = fixedInvSum2, minD2 = fixedMinD2;
-            if (!uniform) {
-                const __m512 sum = _mm512_mask_loadu_ps(one, live, bsum + k);
-                const __m512 sum2 = _mm512_mul_ps(sum, sum);
-                invSum2 = _mm512_rcp14_ps(sum2);
-                invSum2 = _mm512_mul_ps(invSum2, _mm512_fnmadd_ps(sum2, invSum2, two));
-                minD2 = _mm512_mul_ps(minF2, sum2);
-            }
+            if (!uniform) radiusSumTerms(_mm512_mask_loadu_ps(one, live, bsum + k), invSum2, minD2);
             // s: smoothstep of the pair's mean temperature; exactly 1 from T_liquid up,
             // whatever (t - T_solid) / range rounds to.
             const __m512 t = _mm512_mul_ps(half, _mm512_add_ps(tI, _mm512_maskz_loadu_ps(live, bt + k)));
@@ -122,21 +114,8 @@ inline void sumBlendedBatch(const ThermalPair& pair, float ti, const NeighborBat
             const __m512 b1 = blend(b1S, b1L), b2 = blend(b2S, b2L), cr2 = blend(cr2S, cr2L),
                          cd2 = blend(cd2S, cd2L);
             const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
-            const __m512 safeD2 = _mm512_max_ps(d2, minD2);
-            __m512 invD = _mm512_rsqrt14_ps(safeD2);
-            invD = _mm512_mul_ps(invD, _mm512_fnmadd_ps(_mm512_mul_ps(half, safeD2),
-                                                        _mm512_mul_ps(invD, invD), threeHalves));
-            const __m512 relative = _mm512_mul_ps(d2, invSum2);
-            const __m512 windowR = _mm512_max_ps(zero, _mm512_fnmadd_ps(relative, cr2, one));
-            const __m512 windowD = _mm512_max_ps(zero, _mm512_fnmadd_ps(relative, cd2, one));
-            const __m512 powN = intPow<N>(invD);
-            const __m512 powM = M > N ? _mm512_mul_ps(powN, intPow<(M > N ? M - N : 1)>(invD))
-                                      : intPow<M>(invD);
-            const __m512 radial = _mm512_fmsub_ps(b1, powM, _mm512_mul_ps(b2, powN));
-            const __m512 vDotP = _mm512_maskz_loadu_ps(live, bvp + k);
-            const __m512 drag = _mm512_mul_ps(_mm512_mul_ps(windowD, vDotP),
-                                              _mm512_mul_ps(invD, invD));
-            const __m512 scale = _mm512_fmsub_ps(windowR, radial, drag);
+            const __m512 scale = pairScale<M, N>(d2, invSum2, minD2, b1, b2, cr2, cd2,
+                                                 _mm512_maskz_loadu_ps(live, bvp + k));
             ax = _mm512_mask3_fmadd_ps(scale, dx, ax, live);
             ay = _mm512_mask3_fmadd_ps(scale, dy, ay, live);
             az = _mm512_mask3_fmadd_ps(scale, dz, az, live);
