@@ -129,20 +129,10 @@ SimulationSetup twoSauces() {
 TEST(MaterialPairs, MomentumIsConservedWithTwoMaterials) {
     Simulation sim(twoSauces());
     NullReporter quiet;
-    const auto momentum = [&] {
-        const Globules& g = sim.globules();
-        Vec3 p{0, 0, 0};
-        double scale = 0;
-        for (std::size_t i = 0; i < g.size(); ++i) {
-            p = p + double(g.mass[i]) * g.velocity(i);
-            scale += g.mass[i] * length(g.velocity(i));
-        }
-        return std::pair{p, scale};
-    };
-    const auto [before, scale] = momentum();
+    const auto [before, scale] = momentumOf(sim.globules());
     ASSERT_GT(sim.globules().size(), 50u);
     for (int f = 2; f <= 26; ++f) sim.advanceFrame(f, quiet);
-    EXPECT_LT(length(momentum().first - before), 1e-4 * scale);
+    EXPECT_LT(length(momentumOf(sim.globules()).first - before), 1e-4 * scale);
     // They did meet: the mustard, thrown at the ketchup, has lost most of its x momentum.
     double mustard = 0;
     const Globules& g = sim.globules();

@@ -280,20 +280,10 @@ TEST(Thermal, MomentumAndHeatAreConservedWithTwoMaterials) {
     const SimulationSetup setup = warmSauces();
     Simulation sim(setup);
     NullReporter quiet;
-    const auto momentum = [&] {
-        const Globules& g = sim.globules();
-        Vec3 p{0, 0, 0};
-        double scale = 0;
-        for (std::size_t i = 0; i < g.size(); ++i) {
-            p = p + double(g.mass[i]) * g.velocity(i);
-            scale += g.mass[i] * length(g.velocity(i));
-        }
-        return std::pair{p, scale};
-    };
-    const auto [before, scale] = momentum();
+    const auto [before, scale] = momentumOf(sim.globules());
     const double heat = totalHeat(sim.globules(), setup.materials());
     for (int f = 2; f <= 26; ++f) sim.advanceFrame(f, quiet);
-    EXPECT_LT(length(momentum().first - before), 1e-4 * scale);
+    EXPECT_LT(length(momentumOf(sim.globules()).first - before), 1e-4 * scale);
     EXPECT_NEAR(totalHeat(sim.globules(), setup.materials()), heat, 1e-5 * heat);
     // They met: the cold ketchup took heat from the hot mustard.
     float warmest = 0;
