@@ -1,5 +1,7 @@
 #include "frame_target.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "errors.h"
@@ -18,16 +20,21 @@ void checkComplete(const char* what, int width, int height, int samples) {
 
 }  // namespace
 
-FrameTarget::FrameTarget(int width, int height, int samples)
+FrameTarget::FrameTarget(int width, int height, int samples, bool passes)
     : mWidth(width),
       mHeight(height),
       mSamples(samples),
+      mPasses(passes),
       mDraw(gl::makeFramebuffer()),
       mResolved(gl::makeFramebuffer()),
       mColor(gl::makeRenderbuffer()),
       mDepth(gl::makeRenderbuffer()),
       mResolvedColor(gl::makeRenderbuffer()),
-      mIds(gl::makeTexture()) {
+      mIds(gl::makeTexture()),
+      mNormal(gl::makeRenderbuffer()),
+      mDistance(gl::makeRenderbuffer()),
+      mResolvedNormal(gl::makeRenderbuffer()),
+      mResolvedDistance(gl::makeRenderbuffer()) {
     const bool multi = samples > 1;
     glBindRenderbuffer(GL_RENDERBUFFER, mColor.id());
     glRenderbufferStorageMultisample(GL_RENDERBUFFER, multi ? samples : 0, GL_RGBA16F, width,
@@ -52,6 +59,18 @@ FrameTarget::FrameTarget(int width, int height, int samples)
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, idTarget, mIds.id(), 0);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
                               mDepth.id());
+    if (passes) {
+        glBindRenderbuffer(GL_RENDERBUFFER, mNormal.id());
+        glRenderbufferStorageMultisample(GL_RENDERBUFFER, multi ? samples : 0, GL_RGBA16F, width,
+                                         height);
+        glBindRenderbuffer(GL_RENDERBUFFER, mDistance.id());
+        glRenderbufferStorageMultisample(GL_RENDERBUFFER, multi ? samples : 0, GL_R32F, width,
+                                         height);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_RENDERBUFFER,
+                                  mNormal.id());
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT3, GL_RENDERBUFFER,
+                                  mDistance.id());
+    }
     checkComplete("frame buffer", width, height, samples);
 
     glBindRenderbuffer(GL_RENDERBUFFER, mResolvedColor.id());
@@ -59,49 +78,115 @@ FrameTarget::FrameTarget(int width, int height, int samples)
     glBindFramebuffer(GL_FRAMEBUFFER, mResolved.id());
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
                               mResolvedColor.id());
+    if (passes) {
+        // The resolve's formats must match the multisampled buffers'.
+        glBindRenderbuffer(GL_RENDERBUFFER, mResolvedNormal.id());
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA16F, width, height);
+        glBindRenderbuffer(GL_RENDERBUFFER, mResolvedDistance.id());
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_R32F, width, height);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_RENDERBUFFER,
+                                  mResolvedNormal.id());
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT3, GL_RENDERBUFFER,
+                                  mResolvedDistance.id());
+    }
     checkComplete("resolve buffer", width, height, 1);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     gl::checkErrors("creating the frame buffers");
 }
 
-void FrameTarget::bindAndClear(Vec3 background) const {
+void FrameTarget::bindAndClear(Vec3 background, float alpha) const {
     glBindFramebuffer(GL_FRAMEBUFFER, mDraw.id());
     glViewport(0, 0, mWidth, mHeight);
-    const GLenum both[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glDrawBuffers(2, both);
+    const GLenum all[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                          GL_COLOR_ATTACHMENT3};
+    glDrawBuffers(mPasses ? 4 : 2, all);
     glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    const float color[] = {float(background.x), float(background.y), float(background.z), 1};
+    const float color[] = {float(background.x) * alpha, float(background.y) * alpha,
+                           float(background.z) * alpha, alpha};
     const GLuint noId[] = {0, 0, 0, 0};
+    const float zero[] = {0, 0, 0, 0};
     glClearBufferfv(GL_COLOR, 0, color);
     glClearBufferuiv(GL_COLOR, 1, noId);
+    if (mPasses) {
+        glClearBufferfv(GL_COLOR, 2, zero);
+        glClearBufferfv(GL_COLOR, 3, zero);
+    }
     glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
     drawColor();
 }
 
 void FrameTarget::drawColor() const {
-    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_NONE};
-    glDrawBuffers(2, buffers);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_COLOR_ATTACHMENT2,
+                              GL_COLOR_ATTACHMENT3};
+    glDrawBuffers(mPasses ? 4 : 2, buffers);
     glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
 void FrameTarget::drawIds() const {
-    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glDrawBuffers(2, buffers);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_NONE, GL_NONE};
+    glDrawBuffers(mPasses ? 4 : 2, buffers);
     glColorMaski(0, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
 }
 
-void FrameTarget::readPixels(std::vector<float>& rgba) const {
+void FrameTarget::resolveAndRead(int attachment, GLenum format, std::vector<float>& out) const {
+    const GLenum buffer = GL_COLOR_ATTACHMENT0 + attachment;
     glBindFramebuffer(GL_READ_FRAMEBUFFER, mDraw.id());
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glReadBuffer(buffer);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, mResolved.id());
+    GLenum only[4] = {GL_NONE, GL_NONE, GL_NONE, GL_NONE};
+    only[attachment] = buffer;
+    glDrawBuffers(attachment + 1, only);
     glBlitFramebuffer(0, 0, mWidth, mHeight, 0, 0, mWidth, mHeight, GL_COLOR_BUFFER_BIT,
                       GL_NEAREST);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, mResolved.id());
-    rgba.resize(std::size_t(mWidth) * mHeight * 4);
+    glReadBuffer(buffer);
+    out.resize(std::size_t(mWidth) * mHeight * (format == GL_RGBA ? 4 : 1));
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, mWidth, mHeight, GL_RGBA, GL_FLOAT, rgba.data());
+    glReadPixels(0, 0, mWidth, mHeight, format, GL_FLOAT, out.data());
+}
+
+void FrameTarget::read(LinearFrame& frame) const {
+    resolveAndRead(0, GL_RGBA, mReadback);
+    if (mPasses) {
+        resolveAndRead(2, GL_RGBA, mNormalReadback);
+        resolveAndRead(3, GL_RED, mDistanceReadback);
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     gl::checkErrors("reading the frame back");
+    // GL rows run bottom to top; the frame's top to bottom.
+    const std::size_t w = std::size_t(mWidth);
+    frame.width = mWidth;
+    frame.height = mHeight;
+    frame.rgba.resize(w * mHeight * 4);
+    for (int y = 0; y < mHeight; ++y) {
+        const float* in = &mReadback[std::size_t(mHeight - 1 - y) * w * 4];
+        std::copy(in, in + 4 * w, &frame.rgba[std::size_t(y) * w * 4]);
+    }
+    if (!mPasses) {
+        frame.depth.clear();
+        frame.normal.clear();
+        return;
+    }
+    frame.depth.resize(w * mHeight);
+    frame.normal.resize(w * mHeight * 3);
+    for (int y = 0; y < mHeight; ++y) {
+        const std::size_t row = std::size_t(mHeight - 1 - y) * w;
+        for (std::size_t x = 0; x < w; ++x) {
+            const float* n = &mNormalReadback[(row + x) * 4];
+            const float coverage = n[3];
+            const std::size_t out = std::size_t(y) * w + x;
+            float* normal = &frame.normal[3 * out];
+            const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            // Below a thousandth of a sample's weight, nothing is drawn there.
+            if (!(coverage > 1e-3f) || !(length > 0)) {
+                frame.depth[out] = LinearFrame::kNothing;
+                normal[0] = normal[1] = normal[2] = 0;
+                continue;
+            }
+            frame.depth[out] = mDistanceReadback[row + x] / coverage;
+            for (int k = 0; k < 3; ++k) normal[k] = n[k] / length;
+        }
+    }
 }
 
 }  // namespace globular::detail

@@ -3,11 +3,15 @@
 // (multisampled when asked), depth and stencil, and an id buffer that the sphere pass
 // fills with the index of the globule seen at each sample; resolved and read back as
 // floats. The stencil marks the samples a sphere covers, so the full-screen shading pass
-// runs only there.
+// runs only there. With passes, two more buffers hold what a compositor uses, each
+// weighted by coverage so the resolve's average divided by coverage is the mean over the
+// covered samples: the world normal and coverage (RGBA16F), the distance from the eye
+// (R32F).
 
 #include <vector>
 
 #include "gl_objects.h"
+#include "linear_frame.h"
 #include "vec3.h"
 
 namespace globular::detail {
@@ -15,10 +19,11 @@ namespace globular::detail {
 class FrameTarget {
   public:
     /// @throw Error when the driver cannot make such a framebuffer.
-    FrameTarget(int width, int height, int samples);
+    FrameTarget(int width, int height, int samples, bool passes = false);
 
-    /// Binds the target; clears colour to @p background (linear), depth, stencil and ids.
-    void bindAndClear(Vec3 background) const;
+    /// Binds the target; clears colour to @p background (linear) premultiplied by
+    /// @p alpha, depth, stencil, ids and the passes.
+    void bindAndClear(Vec3 background, float alpha = 1) const;
     /// Draw into colour only (shading, ground, meshes).
     void drawColor() const;
     /// Draw into ids only; colour writes are masked but the colour output's alpha still
@@ -27,18 +32,26 @@ class FrameTarget {
     /// The id buffer's texture (GL_TEXTURE_2D_MULTISAMPLE when samples > 1).
     GLuint idTexture() const { return mIds.id(); }
 
-    /// Averages the samples and reads the image, bottom row first, RGBA floats.
-    void readPixels(std::vector<float>& rgba) const;
+    /// Averages the samples and reads the image into @p frame (rows top first), with the
+    /// passes when the target has them.
+    void read(LinearFrame& frame) const;
+    bool passes() const { return mPasses; }
 
     int width() const { return mWidth; }
     int height() const { return mHeight; }
     int samples() const { return mSamples; }
 
   private:
+    /// Resolves colour attachment @p attachment and reads it, bottom row first.
+    void resolveAndRead(int attachment, GLenum format, std::vector<float>& out) const;
+
     int mWidth, mHeight, mSamples;
+    bool mPasses;
     gl::Framebuffer mDraw, mResolved;
     gl::Renderbuffer mColor, mDepth, mResolvedColor;
     gl::Texture mIds;
+    gl::Renderbuffer mNormal, mDistance, mResolvedNormal, mResolvedDistance;  // passes only
+    mutable std::vector<float> mReadback, mNormalReadback, mDistanceReadback;
 };
 
 }  // namespace globular::detail

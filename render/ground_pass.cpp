@@ -28,6 +28,7 @@ void GroundPass::draw(const FrameUniforms& f, const GroundLook& look) const {
     glUniform2f(mProgram.uniform("uFadeCenter"), cx, cz);
     glUniform2f(mProgram.uniform("uFade"), float(look.fadeStart), float(look.fadeEnd));
     setVec3(mProgram, "uBackground", look.background);
+    glUniform1f(mProgram.uniform("uBackgroundAlpha"), float(look.backgroundAlpha));
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
     glBindVertexArray(0);
 }

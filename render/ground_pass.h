@@ -17,6 +17,7 @@ struct GroundLook {
     double checkerContrast = 0.12;  ///< fraction by which dark squares are darker
     Vec3 color;                     ///< linear
     Vec3 background;                ///< linear
+    double backgroundAlpha = 1;     ///< 0: transparent; the ground fades into alpha
 };
 
 class GroundPass {

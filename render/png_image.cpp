@@ -35,7 +35,12 @@ void onPngWarning(png_structp, png_const_charp) {}
 
 }  // namespace
 
-Image readPng(const std::filesystem::path& path) {
+namespace {
+
+/// Reads @p path, normalised to RGBA at @p bits (8 or 16) per channel; @p allocate(w, h)
+/// returns the row pointers to read into.
+template <typename Allocate>
+void readPngInto(const std::filesystem::path& path, int bits, int* fileBits, Allocate&& allocate) {
     File file(std::fopen(path.c_str(), "rb"));
     if (!file) throw IoError("cannot open " + path.string() + ": " + std::strerror(errno));
     png_byte signature[8];
@@ -50,7 +55,6 @@ Image readPng(const std::filesystem::path& path) {
         png_destroy_read_struct(&png, nullptr, nullptr);
         throw IoError("cannot read " + path.string() + ": out of memory");
     }
-    Image image;
     std::vector<png_bytep> rows;
     if (setjmp(png_jmpbuf(png))) {
         png_destroy_read_struct(&png, &info, nullptr);
@@ -59,29 +63,28 @@ Image readPng(const std::filesystem::path& path) {
     png_init_io(png, file.get());
     png_set_sig_bytes(png, 8);
     png_read_info(png, info);
-    // Normalise every colour type and depth to 8-bit RGBA.
+    if (fileBits) *fileBits = png_get_bit_depth(png, info);
+    // Normalise every colour type and depth to RGBA at the asked depth.
     png_set_expand(png);
-    png_set_strip_16(png);
+    if (bits == 8) {
+        png_set_strip_16(png);
+    } else {
+        png_set_expand_16(png);
+        png_set_swap(png);  // PNG stores 16-bit values big-endian
+    }
     png_set_gray_to_rgb(png);
-    png_set_add_alpha(png, 0xff, PNG_FILLER_AFTER);
+    png_set_add_alpha(png, bits == 8 ? 0xff : 0xffff, PNG_FILLER_AFTER);
     png_set_interlace_handling(png);
     png_read_update_info(png, info);
-    image = Image(int(png_get_image_width(png, info)), int(png_get_image_height(png, info)));
-    rows.resize(image.height);
-    for (int y = 0; y < image.height; ++y) rows[y] = image.pixel(0, y);
+    rows = allocate(int(png_get_image_width(png, info)), int(png_get_image_height(png, info)));
     png_read_image(png, rows.data());
     png_read_end(png, nullptr);
     png_destroy_read_struct(&png, &info, nullptr);
-    return image;
 }
 
-void writePng(const std::filesystem::path& path, const Image& image) {
-    if (image.width <= 0 || image.height <= 0 ||
-        image.rgba.size() != std::size_t(image.width) * image.height * 4) {
-        throw IoError("cannot write " + path.string() + ": the image is empty or malformed");
-    }
-    bool opaque = true;
-    for (std::size_t i = 3; i < image.rgba.size() && opaque; i += 4) opaque = image.rgba[i] == 255;
+/// Writes RGBA rows at @p bits per channel (RGB when @p opaque), atomically.
+void writePngRows(const std::filesystem::path& path, int width, int height, int bits,
+                  bool opaque, const std::vector<png_bytep>& rows) {
     writeAtomically(path, [&](const std::filesystem::path& temporary) {
         File file(std::fopen(temporary.c_str(), "wb"));
         if (!file) throw IoError(std::strerror(errno));
@@ -93,7 +96,6 @@ void writePng(const std::filesystem::path& path, const Image& image) {
             png_destroy_write_struct(&png, nullptr);
             throw IoError("out of memory");
         }
-        std::vector<png_bytep> rows(image.height);
         if (setjmp(png_jmpbuf(png))) {
             png_destroy_write_struct(&png, &info);
             throw IoError(state.message);
@@ -101,23 +103,76 @@ void writePng(const std::filesystem::path& path, const Image& image) {
         png_init_io(png, file.get());
         // Frames are large and written once: a low zlib level is the better trade.
         png_set_compression_level(png, 3);
-        png_set_IHDR(png, info, image.width, image.height, 8,
+        png_set_IHDR(png, info, width, height, bits,
                      opaque ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE,
                      PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
         png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
         png_write_info(png, info);
-        // An opaque image is stored as RGB: libpng drops the fourth byte of each pixel.
+        if (bits == 16) png_set_swap(png);  // our values are host (little-endian) order
+        // An opaque image is stored as RGB: libpng drops the fourth value of each pixel.
         if (opaque) png_set_filler(png, 0, PNG_FILLER_AFTER);
-        for (int y = 0; y < image.height; ++y) {
-            rows[y] = const_cast<png_bytep>(image.pixel(0, y));
-        }
-        png_write_image(png, rows.data());
+        png_write_image(png, const_cast<png_bytepp>(rows.data()));
         png_write_end(png, info);
         png_destroy_write_struct(&png, &info);
         if (std::fflush(file.get()) != 0 || std::ferror(file.get())) {
             throw IoError(std::string("write failed: ") + std::strerror(errno));
         }
     });
+}
+
+template <typename AnyImage>
+void checkShape(const std::filesystem::path& path, const AnyImage& image) {
+    if (image.width <= 0 || image.height <= 0 ||
+        image.rgba.size() != std::size_t(image.width) * image.height * 4) {
+        throw IoError("cannot write " + path.string() + ": the image is empty or malformed");
+    }
+}
+
+template <typename AnyImage>
+std::vector<png_bytep> rowsOf(AnyImage& image) {
+    std::vector<png_bytep> rows(image.height);
+    for (int y = 0; y < image.height; ++y) rows[y] = reinterpret_cast<png_bytep>(image.pixel(0, y));
+    return rows;
+}
+
+template <typename AnyImage, typename Value>
+bool isOpaque(const AnyImage& image, Value full) {
+    for (std::size_t i = 3; i < image.rgba.size(); i += 4) {
+        if (image.rgba[i] != full) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+Image readPng(const std::filesystem::path& path) {
+    Image image;
+    readPngInto(path, 8, nullptr, [&](int w, int h) {
+        image = Image(w, h);
+        return rowsOf(image);
+    });
+    return image;
+}
+
+Image16 readPng16(const std::filesystem::path& path, int* bitDepth) {
+    Image16 image;
+    readPngInto(path, 16, bitDepth, [&](int w, int h) {
+        image = Image16(w, h);
+        return rowsOf(image);
+    });
+    return image;
+}
+
+void writePng(const std::filesystem::path& path, const Image& image) {
+    checkShape(path, image);
+    writePngRows(path, image.width, image.height, 8, isOpaque(image, uint8_t(255)),
+                 rowsOf(const_cast<Image&>(image)));
+}
+
+void writePng(const std::filesystem::path& path, const Image16& image) {
+    checkShape(path, image);
+    writePngRows(path, image.width, image.height, 16, isOpaque(image, uint16_t(65535)),
+                 rowsOf(const_cast<Image16&>(image)));
 }
 
 }  // namespace globular

@@ -9,9 +9,16 @@ namespace {
 
 // Per pixel and sample: RGBA16F colour (8 bytes) and 24-bit depth with stencil (4).
 constexpr uint64_t kBytesPerSample = 8 + 4;
-// Per pixel once: the resolve target (8), the float read-back (16), OSMesa's colour
-// buffer (16), the 8-bit image and a PNG row copy (8).
-constexpr uint64_t kBytesPerPixel = 8 + 16 + 16 + 8;
+// Per pixel once: the resolve target (8), the float read-back and the linear frame
+// (16 + 16), OSMesa's colour buffer (16), the 8-bit image and a PNG row copy (8).
+constexpr uint64_t kBytesPerPixel = 8 + 16 + 16 + 16 + 8;
+// With png_bits = 16: the 16-bit image.
+constexpr uint64_t kBytesPerPixel16 = 8;
+// With exr (passes): per sample the normal (RGBA16F, 8) and distance (R32F, 4); per pixel
+// their resolve (12), read-back (20), the frame's depth and normal (16) and the EXR's
+// half copies of colour and normal (14).
+constexpr uint64_t kBytesPerSamplePasses = 8 + 4;
+constexpr uint64_t kBytesPerPixelPasses = 12 + 20 + 16 + 14;
 // Per sphere: instance attributes (position, radius, colour: 32), their copy in the GL
 // driver (32), and the culling pass's per-sphere arrays (about 48).
 constexpr uint64_t kBytesPerSphere = 32 + 32 + 48;
@@ -23,7 +30,10 @@ constexpr uint64_t kBytesPerVertex = 2 * 24, kBytesPerTriangle = 2 * 12;
 uint64_t estimateImageBytes(const RenderSettings& s) {
     const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
     const uint64_t shadow = uint64_t(s.shadowMapSize) * uint64_t(s.shadowMapSize) * 4;
-    return pixels * (kBytesPerSample * uint64_t(s.samples) + kBytesPerPixel) + shadow;
+    const uint64_t perSample = kBytesPerSample + (s.exr ? kBytesPerSamplePasses : 0);
+    const uint64_t perPixel = kBytesPerPixel + (s.pngBits == 16 ? kBytesPerPixel16 : 0) +
+                              (s.exr ? kBytesPerPixelPasses : 0);
+    return pixels * (perSample * uint64_t(s.samples) + perPixel) + shadow;
 }
 
 uint64_t estimateSphereBytes(std::size_t globules) { return uint64_t(globules) * kBytesPerSphere; }

@@ -1,5 +1,6 @@
 #include "render_settings.h"
 
+#include <cmath>
 #include <functional>
 
 #include "errors.h"
@@ -37,6 +38,18 @@ void checkRender(const RenderSettings& s, const KeyName& name) {
         throw SceneError(name("temperature_high") + " = " + numberForMessage(s.temperatureHigh) +
                          ": must be above temperature_low = " +
                          numberForMessage(s.temperatureLow));
+    }
+    if (s.pngBits != 8 && s.pngBits != 16) {
+        throw SceneError(name("png_bits") + " = " + std::to_string(s.pngBits) +
+                         ": must be 8 or 16");
+    }
+    if (!std::isfinite(s.exposure) || std::abs(s.exposure) > 20) {
+        throw SceneError(name("exposure") + " = " + numberForMessage(s.exposure) +
+                         ": must be within -20 to 20 stops");
+    }
+    if (s.toneMapping != "none" && s.toneMapping != "aces") {
+        throw SceneError(name("tone_mapping") + " = \"" + s.toneMapping +
+                         "\": must be \"none\" or \"aces\"");
     }
     if (s.rampMax < s.rampMin) {
         throw SceneError(name("ramp_max") + " = " + std::to_string(s.rampMax) +
@@ -100,6 +113,19 @@ void RenderSettings::describe(SettingsSection& s) {
     s.flag("movie", movie, "assemble the frames into movie.mp4 (needs ffmpeg on PATH)");
     s.number("movie_fps", movieFps, NumberRange::nonNegative(),
              "movie frames per second; 0 = the simulation's fps");
+    s.number("exposure", exposure, {-20, 20},
+             "exposure, stops: the linear image is multiplied by 2^exposure before tone "
+             "mapping (not in the EXR, which stays scene-linear)");
+    s.choice("tone_mapping", toneMapping, {"none", "aces"},
+             "none: linear values clipped at 1 and sRGB-encoded; aces: the filmic ACES fit "
+             "(Narkowicz 2015), highlights roll off instead of clipping");
+    s.integer("png_bits", pngBits, 8, 16, "bits per channel of the PNG frames: 8 or 16 (sRGB)");
+    s.flag("exr", exr,
+           "also write frames/frame.NNNN.exr: half-float linear RGBA, float Z (distance from "
+           "the eye), half N.x N.y N.z (world-space normal)");
+    s.flag("transparent", transparent,
+           "transparent background: alpha 0 where nothing is drawn (PNG RGBA, EXR A); the "
+           "ground, when drawn, fades into alpha instead of the background colour");
 }
 
 void RenderSettings::validate() const { checkRender(*this, plainKeys("render")); }

@@ -36,6 +36,11 @@ struct RenderSettings {
     int64_t contactTileWidth = 480;      ///< pixels per tile
     bool movie = false;                  ///< assemble frames/ into movie.mp4 with ffmpeg
     double movieFps = 0;                 ///< movie frame rate, 0 = the simulation's fps
+    double exposure = 0;                 ///< stops: linear radiance times 2^exposure
+    std::string toneMapping = "none";    ///< none (clip) | aces (tone_map.h)
+    int64_t pngBits = 8;                 ///< bits per channel of the PNG frames: 8 or 16
+    bool exr = false;                    ///< also write frames/frame.NNNN.exr (exr_image.h)
+    bool transparent = false;            ///< background alpha 0 (PNG RGBA, EXR A)
 
     void describe(SettingsSection& section);
     /// @throw SceneError naming the key (e.g. color_by = speed with mode = surface,

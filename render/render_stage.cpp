@@ -9,6 +9,7 @@
 #include "collider_poses.h"
 #include "contact_sheet.h"
 #include "errors.h"
+#include "exr_image.h"
 #include "frame_paths.h"
 #include "globule_cache.h"
 #include "mesh_input.h"
@@ -17,12 +18,19 @@
 #include "renderer.h"
 #include "surface_estimate.h"
 #include "shaders.h"
+#include "tone_map.h"
 
 namespace globular {
 
 namespace fs = std::filesystem;
 
 namespace {
+
+/// frames/frame.NNNN.exr beside frames/frame.NNNN.png.
+fs::path frameExrPath(const fs::path& png) {
+    fs::path exr = png;
+    return exr.replace_extension(".exr");
+}
 
 Globules readCache(const fs::path& outDir, int frame) {
     const fs::path path = cacheVdbPath(outDir, frame);
@@ -174,7 +182,8 @@ void runRenderStage(const RenderJob& job, const StageContext& ctx) {
     const std::vector<ColliderSolid> solids = job.colliders.solids();
     const FrameSetup setup = frameSetup(job, animationExtent(job, solids, ctx));
     Renderer renderer(int(job.render.width), int(job.render.height), int(job.render.samples),
-                      int(job.render.shadowMapSize));
+                      int(job.render.shadowMapSize), job.render.exr);
+    const ToneMapping tone = ToneMapping::from(job.render.exposure, job.render.toneMapping);
     ctx.report().progress("render", 0, total);
     for (int f = ctx.firstFrame; f <= ctx.lastFrame; ++f) {
         FrameSetup frameSetup = setup;
@@ -197,7 +206,13 @@ void runRenderStage(const RenderJob& job, const StageContext& ctx) {
                               "frame " + std::to_string(f));
             image = renderer.drawSpheres(globules, frameSetup);
         }
-        writePng(framePngPath(ctx.outDir, f), image);
+        const fs::path png = framePngPath(ctx.outDir, f);
+        if (job.render.pngBits == 16) {
+            writePng(png, encode16(renderer.lastFrame(), tone));
+        } else {
+            writePng(png, image);
+        }
+        if (job.render.exr) writeExr(frameExrPath(png), renderer.lastFrame());
         ctx.report().progress("render", f - ctx.firstFrame + 1, total);
     }
     if (job.render.contactSheet > 0) writeSheet(job, ctx);

@@ -27,7 +27,8 @@ struct RenderJob {
 ///    (mode surface) of every frame once first, for the automatic camera (when the
 ///    camera is not given), the shadow map's and ground's extent, and the colour ramp's
 ///    range, so all of them hold still over the animation;
-///  - writes frames/frame.NNNN.png, reporting progress("render", done, total);
+///  - writes frames/frame.NNNN.png (8 or 16 bits, render.pngBits) and, with render.exr,
+///    frames/frame.NNNN.exr (exr_image.h), reporting progress("render", done, total);
 ///  - contact_sheet.png of render.contactSheet evenly spaced frames when asked;
 ///  - movie.mp4 when render.movie and ffmpeg is on PATH (a warning otherwise).
 /// @throw SceneError for invalid settings (naming the key), IoError naming a missing or

@@ -15,6 +15,7 @@
 #include "mesh_pass.h"
 #include "shadow_map.h"
 #include "sphere_pass.h"
+#include "tone_map.h"
 
 namespace globular {
 
@@ -45,26 +46,9 @@ detail::GroundLook groundLook(const FrameSetup& s, const Bounds3& box) {
     look.checkerSize = s.render.checkerSize > 0 ? s.render.checkerSize : automaticCheckerSize(box);
     look.color = srgbToLinear(s.render.groundColor);
     look.background = srgbToLinear(s.render.background);
+    look.backgroundAlpha = s.render.transparent ? 0 : 1;
     return look;
 }
-
-/// sRGB encoding of linear values through a 16-bit table: exact to the 8-bit output
-/// and about 20x faster than pow per channel.
-class SrgbEncoder {
-  public:
-    SrgbEncoder() {
-        for (std::size_t i = 0; i < mTable.size(); ++i) {
-            mTable[i] = uint8_t(std::lround(255.0 * linearToSrgb(double(i) / 65535.0)));
-        }
-    }
-    uint8_t operator()(float linear) const {
-        const float clamped = std::clamp(linear, 0.0f, 1.0f);  // also maps NaN to 0
-        return mTable[std::size_t(clamped * 65535.0f + 0.5f)];
-    }
-
-  private:
-    std::array<uint8_t, 65536> mTable{};
-};
 
 /// The far half of a see-through prop, seen from @p eye: its walls on the camera's side
 /// of the vertical plane through its middle are left out (its floor and roof stay), so
@@ -117,12 +101,11 @@ struct Renderer::Impl {
     std::optional<detail::MeshPass> mesh;       // compiles no sphere shaders, and so on
     std::vector<detail::MeshPass> props;        // one per prop of the set
     detail::GroundPass ground;
-    SrgbEncoder encode;
-    std::vector<float> readback;
+    LinearFrame frame;
     bool culling = true;
 
-    Impl(int w, int h, int n, int shadowSize)
-        : width(w), height(h), samples(n), target(w, h, n), shadowMap(shadowSize) {}
+    Impl(int w, int h, int n, int shadowSize, bool passes)
+        : width(w), height(h), samples(n), target(w, h, n, passes), shadowMap(shadowSize) {}
 
     FrameUniforms uniforms(const FrameSetup& s, const Bounds3& box, double groundReach) const {
         FrameUniforms f;
@@ -215,7 +198,7 @@ struct Renderer::Impl {
                 if (!s.props[k].seeThrough) props[k].drawShadow(f);
             }
         }
-        target.bindAndClear(srgbToLinear(s.render.background));
+        target.bindAndClear(srgbToLinear(s.render.background), s.render.transparent ? 0 : 1);
         shadowMap.bindForSampling();
         // Content first: the ground behind it is then rejected before shading.
         content.draw(f);
@@ -224,29 +207,13 @@ struct Renderer::Impl {
             props[k].draw(grey, s.props[k].seeThrough ? Cull::None : Cull::Back);
         }
         if (s.render.ground) ground.draw(f, look);
-        target.readPixels(readback);
+        target.read(frame);
         gl::checkErrors("drawing a frame");
-        return encodeImage();
-    }
-
-    /// GL rows run bottom to top; PNG rows top to bottom.
-    Image encodeImage() const {
-        Image image(width, height);
-        for (int y = 0; y < height; ++y) {
-            const float* in = &readback[std::size_t(height - 1 - y) * width * 4];
-            uint8_t* out = image.pixel(0, y);
-            for (int x = 0; x < width; ++x, in += 4, out += 4) {
-                out[0] = encode(in[0]);
-                out[1] = encode(in[1]);
-                out[2] = encode(in[2]);
-                out[3] = 255;
-            }
-        }
-        return image;
+        return encode8(frame, ToneMapping::from(s.render.exposure, s.render.toneMapping));
     }
 };
 
-Renderer::Renderer(int width, int height, int samples, int shadowMapSize) {
+Renderer::Renderer(int width, int height, int samples, int shadowMapSize, bool passes) {
     if (width <= 0 || height <= 0) throw Error("render: the image size must be positive");
     makeGlContextCurrent();
     GLint maxSamples = 1;
@@ -256,7 +223,7 @@ Renderer::Renderer(int width, int height, int samples, int shadowMapSize) {
                     " samples per pixel requested; this OpenGL driver supports 1 to " +
                     std::to_string(maxSamples) + " (set [render] samples)");
     }
-    mImpl = std::make_unique<Impl>(width, height, samples, shadowMapSize);
+    mImpl = std::make_unique<Impl>(width, height, samples, shadowMapSize, passes);
 }
 
 Renderer::~Renderer() = default;
@@ -325,6 +292,8 @@ Image Renderer::drawMesh(const MeshView& mesh, const FrameSetup& setup) {
 }
 
 void Renderer::setOcclusionCulling(bool on) { mImpl->culling = on; }
+
+const LinearFrame& Renderer::lastFrame() const { return mImpl->frame; }
 
 int Renderer::width() const { return mImpl->width; }
 int Renderer::height() const { return mImpl->height; }

@@ -9,6 +9,7 @@
 
 #include "camera.h"
 #include "globules.h"
+#include "linear_frame.h"
 #include "mesh.h"
 #include "mesh_view.h"
 #include "png_image.h"
@@ -48,12 +49,17 @@ class Renderer {
     /// Creates the GL resources (and the process's GL context on first use).
     /// @param samples 1 (no anti-aliasing), 2, 4, ... up to what the driver supports.
     /// @param shadowMapSize texels per side of the key light's shadow map.
+    /// @param passes also draw the compositing passes (distance and normal) into
+    ///        lastFrame(), for EXR output.
     /// @throw Error when the GL context cannot be made or @p samples is unsupported.
-    Renderer(int width, int height, int samples, int shadowMapSize = 2048);
+    Renderer(int width, int height, int samples, int shadowMapSize = 2048, bool passes = false);
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
 
+    /// The draw functions return the frame encoded for display: exposure and tone mapping
+    /// of setup.render, sRGB, 8 bits, alpha straight (0 where a transparent background
+    /// shows). lastFrame() keeps it linear, with its passes.
     /// Each globule a sphere of its radius. Non-finite globules are skipped.
     /// @throw Error for color_by = temperature when the globules carry none.
     Image drawSpheres(const Globules& globules, const FrameSetup& setup);
@@ -66,6 +72,9 @@ class Renderer {
     /// Occlusion culling of hidden spheres before drawing (on by default). The image is
     /// the same either way; off is for tests and measurements.
     void setOcclusionCulling(bool on);
+
+    /// The last frame drawn, linear and premultiplied, with the passes when asked for.
+    const LinearFrame& lastFrame() const;
 
     int width() const;
     int height() const;

@@ -58,6 +58,16 @@ float keyLightVisibility(vec3 p, vec3 n) {
     return 0.25 * sum;
 }
 
+// The compositing passes (frame_target.h), weighted by the colour's alpha so the resolve
+// can divide the pixel's average by its coverage: the world normal, and the distance from
+// the eye. Draw buffers 2 and 3 are off unless the frame asks for passes.
+layout(location = 2) out vec4 fragNormal;
+layout(location = 3) out float fragDistance;
+void writePasses(vec3 p, vec3 n, float weight) {
+    fragNormal = vec4(n * weight, weight);
+    fragDistance = length(p - uEye) * weight;
+}
+
 vec3 shade(vec3 p, vec3 n, vec3 albedo, float specular) {
     // Sky light: full from above, 60% from below (the ground returns some).
     vec3 color = albedo * uAmbient * (0.8 + 0.2 * n.y);
@@ -106,13 +116,14 @@ in vec3 vWorld;
 in vec3 vNormal;
 in vec3 vAlbedo;
 uniform float uSpecular;
-out vec4 fragColor;
+layout(location = 0) out vec4 fragColor;
 void main() {
     vec3 n = dot(vNormal, vNormal) > 0.25 ? normalize(vNormal)
                                           : normalize(cross(dFdx(vWorld), dFdy(vWorld)));
     // Two-sided: an open or inward-wound mesh still shades from the side we see.
     if (dot(n, uEye - vWorld) < 0.0) n = -n;
     fragColor = vec4(shade(vWorld, n, vAlbedo, uSpecular), 1.0);
+    writePasses(vWorld, n, 1.0);
 }
 )");
 }
@@ -151,7 +162,8 @@ uniform float uCheckerContrast;
 uniform vec2 uFadeCenter;    // xz
 uniform vec2 uFade;          // start and end distance of the fade into the background
 uniform vec3 uBackground;    // linear
-out vec4 fragColor;
+uniform float uBackgroundAlpha;  // 0: transparent background (premultiplied: colour 0)
+layout(location = 0) out vec4 fragColor;
 
 float filteredChecker(vec2 p) {
     vec2 w = max(abs(dFdx(p)) + abs(dFdy(p)), vec2(1e-4));
@@ -165,7 +177,10 @@ void main() {
     vec3 albedo = uGroundColor * (1.0 - uCheckerContrast * checker);
     vec3 color = shade(vWorld, vec3(0.0, 1.0, 0.0), albedo, 0.0);
     float fade = smoothstep(uFade.x, uFade.y, length(vWorld.xz - uFadeCenter));
-    fragColor = vec4(mix(color, uBackground, fade), 1.0);
+    // Premultiplied: over a transparent background the ground fades into alpha.
+    float alpha = mix(1.0, uBackgroundAlpha, fade);
+    fragColor = vec4(mix(color, uBackground * uBackgroundAlpha, fade), alpha);
+    writePasses(vWorld, vec3(0.0, 1.0, 0.0), alpha);
 }
 )");
 }

@@ -181,7 +181,7 @@ uniform samplerBuffer uZ;
 uniform samplerBuffer uRadius;
 uniform samplerBuffer uValue;
 uniform float uSpecular;
-out vec4 fragColor;
+layout(location = 0) out vec4 fragColor;
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
@@ -207,7 +207,9 @@ void main() {
     vec3 dir = cameraRay(gl_FragCoord.xy);
     float outside, along;
     vec3 hit = uEye + sphereHitDistance(uEye, dir, c, r, outside, along) * dir;
-    fragColor = vec4(shade(hit, normalize(hit - c), albedo, uSpecular), 1.0);
+    vec3 n = normalize(hit - c);
+    fragColor = vec4(shade(hit, n, albedo, uSpecular), 1.0);
+    writePasses(hit, n, 1.0);
 }
 )");
 }

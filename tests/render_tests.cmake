@@ -9,11 +9,13 @@ globular_test(render_unit_tests
             scene_extent_test.cpp
             contact_sheet_test.cpp
             sphere_culling_test.cpp
+            tone_map_test.cpp
     LIBS globular_render)
 globular_test(renderer_tests
     SOURCES renderer_test.cpp
             render_golden_test.cpp
-    LIBS globular_render)
+            render_output_test.cpp
+    LIBS globular_render OpenEXR::OpenEXR Imath::Imath)
 globular_test(render_stage_tests
     SOURCES render_stage_test.cpp
     LIBS globular_render)
