@@ -1,6 +1,7 @@
 // Render benchmarks: time per frame at 1280x720 and 1920x1080 for 1e3, 1e5 and 1e6 sphere
 // globules (renderBenchPour) and for meshes of 1e5 and 1e6 triangles (renderBenchBlob),
-// plus the PNG encoding of a frame, and 1e6 spheres without occlusion culling. A frame is
+// plus the PNG encoding of a frame, a full-HD frame written with and without its EXR
+// (BM_FrameOutput), and 1e6 spheres without occlusion culling. A frame is
 // upload, culling, shadow map, drawing, resolve, read-back and sRGB encoding: everything
 // runRenderStage does per frame but reading the cache and writing the PNG. The GL context
 // and shaders are made before timing.
@@ -12,10 +13,12 @@
 #include <filesystem>
 
 #include "camera.h"
+#include "exr_image.h"
 #include "gl_context.h"
 #include "png_image.h"
 #include "render_bench_scene.h"
 #include "renderer.h"
+#include "tone_map.h"
 
 namespace globular {
 namespace {
@@ -107,6 +110,41 @@ void BM_WritePng(benchmark::State& state) {
     std::filesystem::remove(path);
 }
 BENCHMARK(BM_WritePng)->Arg(720)->Arg(1080)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// A whole 1920x1080 frame of 1e5 spheres as the render stage writes it: drawing, the PNG
+// (8 or 16 bits) and, with exr, the passes and frames/frame.NNNN.exr. exr = 0 with 8 bits
+// is the default output; the difference is what the EXR master costs.
+void BM_FrameOutput(benchmark::State& state) {
+    const bool exr = state.range(0) != 0;
+    const int bits = int(state.range(1));
+    const int height = 1080, width = 1920;
+    const Globules g = renderBenchPour(100000);
+    SceneExtent extent;
+    extent.addFrame(g);
+    const FrameSetup setup = setupFor(extent, width, height, "speed");
+    Renderer renderer(width, height, 4, 2048, exr);
+    renderer.drawSpheres(g, setup);
+    const auto dir = std::filesystem::temp_directory_path();
+    const ToneMapping tone = ToneMapping::from(0, "none");
+    timeFrames(state, [&] {
+        const Image image = renderer.drawSpheres(g, setup);
+        if (bits == 16) {
+            writePng(dir / "globular_render_bench.png", encode16(renderer.lastFrame(), tone));
+        } else {
+            writePng(dir / "globular_render_bench.png", image);
+        }
+        if (exr) writeExr(dir / "globular_render_bench.exr", renderer.lastFrame());
+    });
+    std::filesystem::remove(dir / "globular_render_bench.png");
+    std::filesystem::remove(dir / "globular_render_bench.exr");
+}
+BENCHMARK(BM_FrameOutput)
+    ->Args({0, 8})
+    ->Args({1, 8})
+    ->Args({0, 16})
+    ->ArgNames({"exr", "png_bits"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace globular
