@@ -30,11 +30,13 @@ std::vector<half> toHalf(const std::vector<float>& values) {
 void writeExr(const std::filesystem::path& path, const LinearFrame& frame) {
     const std::size_t pixels = std::size_t(frame.width) * frame.height;
     if (frame.width <= 0 || frame.height <= 0 || frame.rgba.size() != 4 * pixels ||
-        (frame.hasPasses() && (frame.depth.size() != pixels || frame.normal.size() != 3 * pixels))) {
+        (frame.hasPasses() && (frame.depth.size() != pixels || frame.normal.size() != 3 * pixels)) ||
+        (!frame.motion.empty() && (!frame.hasPasses() || frame.motion.size() != 2 * pixels))) {
         throw IoError("cannot write " + path.string() + ": the frame is empty or malformed");
     }
     const std::vector<half> rgba = toHalf(frame.rgba);
     const std::vector<half> normal = toHalf(frame.normal);
+    const std::vector<half> motion = toHalf(frame.motion);
     writeAtomically(path, [&](const std::filesystem::path& temporary) {
         try {
             Imf::Header header(frame.width, frame.height);
@@ -58,6 +60,15 @@ void writeExr(const std::filesystem::path& path, const LinearFrame& frame) {
                     buffer.insert(axes[c],
                                   Imf::Slice(Imf::HALF, (char*)(normal.data() + c),
                                              3 * sizeof(half), 3 * sizeof(half) * frame.width));
+                }
+            }
+            if (!frame.motion.empty()) {
+                const char* axes[] = {"forward.u", "forward.v"};
+                for (int c = 0; c < 2; ++c) {
+                    header.channels().insert(axes[c], Imf::Channel(Imf::HALF));
+                    buffer.insert(axes[c],
+                                  Imf::Slice(Imf::HALF, (char*)(motion.data() + c),
+                                             2 * sizeof(half), 2 * sizeof(half) * frame.width));
                 }
             }
             Imf::OutputFile file(temporary.c_str(), header);

@@ -7,7 +7,12 @@
 //                       not along the view axis); 1e10 where nothing is drawn
 //   N.x N.y N.z  half   world-space unit normal of the surface seen; 0 where nothing is
 //                       drawn
-// Z and N are written when the frame carries passes (LinearFrame::hasPasses()). ZIP
+//   forward.u    half   screen-space motion of the surface seen over the next frame (its
+//   forward.v           velocity times 1/fps), pixels, u to the right and v up (Nuke's
+//                       forward motion layer); 0 for the ground and colliders. Sphere mode
+//                       only: a surface mesh carries no velocities, so mesh frames have none
+// Z and N are written when the frame carries passes (LinearFrame::hasPasses()), forward
+// when it carries motion. ZIP
 // compression, scanlines, top row first.
 
 #include <filesystem>

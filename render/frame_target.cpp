@@ -33,8 +33,10 @@ FrameTarget::FrameTarget(int width, int height, int samples, bool passes)
       mIds(gl::makeTexture()),
       mNormal(gl::makeRenderbuffer()),
       mDistance(gl::makeRenderbuffer()),
+      mMotion(gl::makeRenderbuffer()),
       mResolvedNormal(gl::makeRenderbuffer()),
-      mResolvedDistance(gl::makeRenderbuffer()) {
+      mResolvedDistance(gl::makeRenderbuffer()),
+      mResolvedMotion(gl::makeRenderbuffer()) {
     const bool multi = samples > 1;
     glBindRenderbuffer(GL_RENDERBUFFER, mColor.id());
     glRenderbufferStorageMultisample(GL_RENDERBUFFER, multi ? samples : 0, GL_RGBA16F, width,
@@ -66,10 +68,15 @@ FrameTarget::FrameTarget(int width, int height, int samples, bool passes)
         glBindRenderbuffer(GL_RENDERBUFFER, mDistance.id());
         glRenderbufferStorageMultisample(GL_RENDERBUFFER, multi ? samples : 0, GL_R32F, width,
                                          height);
+        glBindRenderbuffer(GL_RENDERBUFFER, mMotion.id());
+        glRenderbufferStorageMultisample(GL_RENDERBUFFER, multi ? samples : 0, GL_RG16F, width,
+                                         height);
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_RENDERBUFFER,
                                   mNormal.id());
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT3, GL_RENDERBUFFER,
                                   mDistance.id());
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT4, GL_RENDERBUFFER,
+                                  mMotion.id());
     }
     checkComplete("frame buffer", width, height, samples);
 
@@ -84,10 +91,14 @@ FrameTarget::FrameTarget(int width, int height, int samples, bool passes)
         glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA16F, width, height);
         glBindRenderbuffer(GL_RENDERBUFFER, mResolvedDistance.id());
         glRenderbufferStorage(GL_RENDERBUFFER, GL_R32F, width, height);
+        glBindRenderbuffer(GL_RENDERBUFFER, mResolvedMotion.id());
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_RG16F, width, height);
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_RENDERBUFFER,
                                   mResolvedNormal.id());
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT3, GL_RENDERBUFFER,
                                   mResolvedDistance.id());
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT4, GL_RENDERBUFFER,
+                                  mResolvedMotion.id());
     }
     checkComplete("resolve buffer", width, height, 1);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -98,8 +109,8 @@ void FrameTarget::bindAndClear(Vec3 background, float alpha) const {
     glBindFramebuffer(GL_FRAMEBUFFER, mDraw.id());
     glViewport(0, 0, mWidth, mHeight);
     const GLenum all[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                          GL_COLOR_ATTACHMENT3};
-    glDrawBuffers(mPasses ? 4 : 2, all);
+                          GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
+    glDrawBuffers(mPasses ? 5 : 2, all);
     glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     const float color[] = {float(background.x) * alpha, float(background.y) * alpha,
                            float(background.z) * alpha, alpha};
@@ -110,6 +121,7 @@ void FrameTarget::bindAndClear(Vec3 background, float alpha) const {
     if (mPasses) {
         glClearBufferfv(GL_COLOR, 2, zero);
         glClearBufferfv(GL_COLOR, 3, zero);
+        glClearBufferfv(GL_COLOR, 4, zero);
     }
     glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
     drawColor();
@@ -117,14 +129,15 @@ void FrameTarget::bindAndClear(Vec3 background, float alpha) const {
 
 void FrameTarget::drawColor() const {
     const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_COLOR_ATTACHMENT2,
-                              GL_COLOR_ATTACHMENT3};
-    glDrawBuffers(mPasses ? 4 : 2, buffers);
+                              GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
+    glDrawBuffers(mPasses ? 5 : 2, buffers);
     glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
 void FrameTarget::drawIds() const {
-    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_NONE, GL_NONE};
-    glDrawBuffers(mPasses ? 4 : 2, buffers);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_NONE, GL_NONE,
+                              GL_NONE};
+    glDrawBuffers(mPasses ? 5 : 2, buffers);
     glColorMaski(0, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
 }
 
@@ -133,24 +146,26 @@ void FrameTarget::resolveAndRead(int attachment, GLenum format, std::vector<floa
     glBindFramebuffer(GL_READ_FRAMEBUFFER, mDraw.id());
     glReadBuffer(buffer);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, mResolved.id());
-    GLenum only[4] = {GL_NONE, GL_NONE, GL_NONE, GL_NONE};
+    GLenum only[5] = {GL_NONE, GL_NONE, GL_NONE, GL_NONE, GL_NONE};
     only[attachment] = buffer;
     glDrawBuffers(attachment + 1, only);
     glBlitFramebuffer(0, 0, mWidth, mHeight, 0, 0, mWidth, mHeight, GL_COLOR_BUFFER_BIT,
                       GL_NEAREST);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, mResolved.id());
     glReadBuffer(buffer);
-    out.resize(std::size_t(mWidth) * mHeight * (format == GL_RGBA ? 4 : 1));
+    out.resize(std::size_t(mWidth) * mHeight * (format == GL_RGBA ? 4 : format == GL_RG ? 2 : 1));
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, mWidth, mHeight, format, GL_FLOAT, out.data());
 }
 
-void FrameTarget::read(LinearFrame& frame) const {
+void FrameTarget::read(LinearFrame& frame, bool motion) const {
     resolveAndRead(0, GL_RGBA, mReadback);
+    motion = motion && mPasses;
     if (mPasses) {
         resolveAndRead(2, GL_RGBA, mNormalReadback);
         resolveAndRead(3, GL_RED, mDistanceReadback);
     }
+    if (motion) resolveAndRead(4, GL_RG, mMotionReadback);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     gl::checkErrors("reading the frame back");
     // GL rows run bottom to top; the frame's top to bottom.
@@ -162,6 +177,7 @@ void FrameTarget::read(LinearFrame& frame) const {
         const float* in = &mReadback[std::size_t(mHeight - 1 - y) * w * 4];
         std::copy(in, in + 4 * w, &frame.rgba[std::size_t(y) * w * 4]);
     }
+    frame.motion.clear();
     if (!mPasses) {
         frame.depth.clear();
         frame.normal.clear();
@@ -169,6 +185,7 @@ void FrameTarget::read(LinearFrame& frame) const {
     }
     frame.depth.resize(w * mHeight);
     frame.normal.resize(w * mHeight * 3);
+    if (motion) frame.motion.assign(w * mHeight * 2, 0.0f);
     for (int y = 0; y < mHeight; ++y) {
         const std::size_t row = std::size_t(mHeight - 1 - y) * w;
         for (std::size_t x = 0; x < w; ++x) {
@@ -185,6 +202,10 @@ void FrameTarget::read(LinearFrame& frame) const {
             }
             frame.depth[out] = mDistanceReadback[row + x] / coverage;
             for (int k = 0; k < 3; ++k) normal[k] = n[k] / length;
+            if (motion) {
+                frame.motion[2 * out] = mMotionReadback[2 * (row + x)] / coverage;
+                frame.motion[2 * out + 1] = mMotionReadback[2 * (row + x) + 1] / coverage;
+            }
         }
     }
 }

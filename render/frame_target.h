@@ -6,7 +6,7 @@
 // runs only there. With passes, two more buffers hold what a compositor uses, each
 // weighted by coverage so the resolve's average divided by coverage is the mean over the
 // covered samples: the world normal and coverage (RGBA16F), the distance from the eye
-// (R32F).
+// (R32F), the screen-space motion (RG16F).
 
 #include <vector>
 
@@ -33,8 +33,8 @@ class FrameTarget {
     GLuint idTexture() const { return mIds.id(); }
 
     /// Averages the samples and reads the image into @p frame (rows top first), with the
-    /// passes when the target has them.
-    void read(LinearFrame& frame) const;
+    /// passes when the target has them (motion too when @p motion).
+    void read(LinearFrame& frame, bool motion = false) const;
     bool passes() const { return mPasses; }
 
     int width() const { return mWidth; }
@@ -50,8 +50,10 @@ class FrameTarget {
     gl::Framebuffer mDraw, mResolved;
     gl::Renderbuffer mColor, mDepth, mResolvedColor;
     gl::Texture mIds;
-    gl::Renderbuffer mNormal, mDistance, mResolvedNormal, mResolvedDistance;  // passes only
-    mutable std::vector<float> mReadback, mNormalReadback, mDistanceReadback;
+    // Passes only: normal, distance and motion, and their resolves.
+    gl::Renderbuffer mNormal, mDistance, mMotion, mResolvedNormal, mResolvedDistance,
+        mResolvedMotion;
+    mutable std::vector<float> mReadback, mNormalReadback, mDistanceReadback, mMotionReadback;
 };
 
 }  // namespace globular::detail

@@ -53,6 +53,9 @@ void applyFrameUniforms(const gl::Program& p, const FrameUniforms& f) {
     const RampStops& stops = f.colorMode == 4 ? blackbodyStops() : rampStops();
     setVec3Array(p, "uRamp", {stops.begin(), stops.end()});
     glUniform2f(p.uniform("uRampRange"), f.rampMin, f.rampMax);
+    setMat4(p, "uPassViewProj", f.viewProj);
+    glUniform2f(p.uniform("uPassViewport"), float(f.width), float(f.height));
+    glUniform1f(p.uniform("uFrameSeconds"), f.frameSeconds);
 }
 
 }  // namespace globular::detail

@@ -35,6 +35,7 @@ struct FrameUniforms {
     std::vector<Vec3> palette = std::vector<Vec3>(16);  ///< linear, by material index
     Vec3 baseColor;            ///< linear
     float rampMin = 0, rampMax = 1;
+    float frameSeconds = 0;    ///< the motion pass's interval (1/fps); 0: no motion pass
 };
 
 /// Sets the shared uniforms of @p program (which must be in use); shadow map on unit 0.

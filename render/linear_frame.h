@@ -20,6 +20,11 @@ struct LinearFrame {
     /// With passes only, 3 floats a pixel: the world-space unit normal of the surface
     /// seen (averaged over the covered samples, renormalised); 0 where nothing is drawn.
     std::vector<float> normal;
+    /// With passes of globules that carry velocities, 2 floats a pixel: how far the surface
+    /// seen moves on the screen over the next frame (1/fps at its velocity), pixels, x to
+    /// the right and y up; 0 for the ground and the set. Empty otherwise (mesh mode: the
+    /// mesh has no velocities).
+    std::vector<float> motion;
 
     /// Depth where nothing is drawn (as Blender writes it).
     static constexpr float kNothing = 1e10f;

@@ -14,11 +14,11 @@ constexpr uint64_t kBytesPerSample = 8 + 4;
 constexpr uint64_t kBytesPerPixel = 8 + 16 + 16 + 16 + 8;
 // With png_bits = 16: the 16-bit image.
 constexpr uint64_t kBytesPerPixel16 = 8;
-// With exr (passes): per sample the normal (RGBA16F, 8) and distance (R32F, 4); per pixel
-// their resolve (12), read-back (20), the frame's depth and normal (16) and the EXR's
-// half copies of colour and normal (14).
-constexpr uint64_t kBytesPerSamplePasses = 8 + 4;
-constexpr uint64_t kBytesPerPixelPasses = 12 + 20 + 16 + 14;
+// With exr (passes): per sample the normal (RGBA16F, 8), distance (R32F, 4) and motion
+// (RG16F, 4); per pixel their resolve (16), read-back (28), the frame's depth, normal and
+// motion (24) and the EXR's half copies of colour, normal and motion (18).
+constexpr uint64_t kBytesPerSamplePasses = 8 + 4 + 4;
+constexpr uint64_t kBytesPerPixelPasses = 16 + 28 + 24 + 18;
 // Per sphere: instance attributes (position, radius, colour: 32), their copy in the GL
 // driver (32), and the culling pass's per-sphere arrays (about 48).
 constexpr uint64_t kBytesPerSphere = 32 + 32 + 48;

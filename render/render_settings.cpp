@@ -121,8 +121,9 @@ void RenderSettings::describe(SettingsSection& s) {
              "(Narkowicz 2015), highlights roll off instead of clipping");
     s.integer("png_bits", pngBits, 8, 16, "bits per channel of the PNG frames: 8 or 16 (sRGB)");
     s.flag("exr", exr,
-           "also write frames/frame.NNNN.exr: half-float linear RGBA, float Z (distance from "
-           "the eye), half N.x N.y N.z (world-space normal)");
+           "also write frames/frame.NNNN.exr: half-float linear RGBA (premultiplied), float Z "
+           "(distance from the eye), half N.x N.y N.z (world-space normal) and, for spheres, "
+           "forward.u forward.v (screen motion over one frame, pixels)");
     s.flag("transparent", transparent,
            "transparent background: alpha 0 where nothing is drawn (PNG RGBA, EXR A); the "
            "ground, when drawn, fades into alpha instead of the background colour");

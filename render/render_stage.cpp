@@ -129,6 +129,7 @@ FrameSetup frameSetup(const RenderJob& job, const SceneExtent& extent) {
     setup.lights = job.lights.empty() ? std::vector<LightSettings>{LightSettings{}} : job.lights;
     setup.groundHeight = job.groundHeight;
     setup.materialColors = job.materialColors;
+    setup.frameSeconds = job.fps > 0 ? 1.0 / job.fps : 0;
     const double aspect = double(job.render.width) / double(job.render.height);
     if (job.camera.automatic()) {
         setup.camera = autoFrame(extent, job.groundHeight, job.camera.fov, aspect);

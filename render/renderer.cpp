@@ -169,12 +169,18 @@ struct Renderer::Impl {
         return f;
     }
 
+    /// The motion pass's interval: spheres only, with passes.
+    static float motionSeconds(const FrameSetup& s, bool spheres, bool passes) {
+        return spheres && passes && s.frameSeconds > 0 ? float(s.frameSeconds) : 0.0f;
+    }
+
     /// Draws one frame: @p content has prepare(f), shadow(f) and draw(f) members.
     template <typename Content>
     Image draw(const FrameSetup& s, const Bounds3& frameBox, Content&& content) {
         const Bounds3 box = withGround(s.content.empty ? frameBox : s.content, s.groundHeight);
         const detail::GroundLook look = groundLook(s, box);
-        const FrameUniforms f = uniforms(s, box, look.fadeEnd);
+        FrameUniforms f = uniforms(s, box, look.fadeEnd);
+        f.frameSeconds = motionSeconds(s, content.spheres(), target.passes());
         content.prepare(f);
         while (props.size() < s.props.size()) props.emplace_back();
         for (std::size_t k = 0; k < s.props.size(); ++k) {
@@ -207,7 +213,7 @@ struct Renderer::Impl {
             props[k].draw(grey, s.props[k].seeThrough ? Cull::None : Cull::Back);
         }
         if (s.render.ground) ground.draw(f, look);
-        target.read(frame);
+        target.read(frame, f.frameSeconds > 0);
         gl::checkErrors("drawing a frame");
         return encode8(frame, ToneMapping::from(s.render.exposure, s.render.toneMapping));
     }
@@ -244,6 +250,7 @@ Image Renderer::drawSpheres(const Globules& globules, const FrameSetup& setup) {
         const detail::FrameTarget& target;
         const Globules& globules;
         detail::SpherePass::Value value;
+        bool spheres() const { return true; }
         void prepare(const FrameUniforms& f) { pass.upload(globules, value, f); }
         void shadow(const FrameUniforms& f) { pass.drawShadow(f); }
         void draw(const FrameUniforms& f) {
@@ -282,6 +289,7 @@ Image Renderer::drawMesh(const MeshView& mesh, const FrameSetup& setup) {
     struct Content {
         detail::MeshPass& pass;
         const MeshView& mesh;
+        bool spheres() const { return false; }
         void prepare(const FrameUniforms&) { pass.upload(mesh); }
         void shadow(const FrameUniforms& f) { pass.drawShadow(f); }
         void draw(const FrameUniforms& f) {

@@ -42,6 +42,9 @@ struct FrameSetup {
     std::vector<Prop> props;
     /// sRGB colour of each material, by index (color_by = material; at most 16).
     std::vector<Vec3> materialColors;
+    /// Seconds between frames (1/fps): the interval of the motion pass (renderers made with
+    /// passes, spheres only). 0: no motion pass.
+    double frameSeconds = 0;
 };
 
 class Renderer {

@@ -59,13 +59,22 @@ float keyLightVisibility(vec3 p, vec3 n) {
 }
 
 // The compositing passes (frame_target.h), weighted by the colour's alpha so the resolve
-// can divide the pixel's average by its coverage: the world normal, and the distance from
-// the eye. Draw buffers 2 and 3 are off unless the frame asks for passes.
+// can divide the pixel's average by its coverage: the world normal, the distance from the
+// eye, and the screen-space motion of a point moving at `velocity` (world units/s) over
+// one frame (uFrameSeconds), pixels, x right and y up. Draw buffers 2 to 4 are off unless
+// the frame asks for passes.
 layout(location = 2) out vec4 fragNormal;
 layout(location = 3) out float fragDistance;
-void writePasses(vec3 p, vec3 n, float weight) {
+layout(location = 4) out vec2 fragMotion;
+uniform mat4 uPassViewProj;
+uniform vec2 uPassViewport;  // pixels
+uniform float uFrameSeconds;
+void writePasses(vec3 p, vec3 n, vec3 velocity, float weight) {
     fragNormal = vec4(n * weight, weight);
     fragDistance = length(p - uEye) * weight;
+    vec4 now = uPassViewProj * vec4(p, 1.0);
+    vec4 next = uPassViewProj * vec4(p + velocity * uFrameSeconds, 1.0);
+    fragMotion = (next.xy / next.w - now.xy / now.w) * 0.5 * uPassViewport * weight;
 }
 
 vec3 shade(vec3 p, vec3 n, vec3 albedo, float specular) {
@@ -123,7 +132,7 @@ void main() {
     // Two-sided: an open or inward-wound mesh still shades from the side we see.
     if (dot(n, uEye - vWorld) < 0.0) n = -n;
     fragColor = vec4(shade(vWorld, n, vAlbedo, uSpecular), 1.0);
-    writePasses(vWorld, n, 1.0);
+    writePasses(vWorld, n, vec3(0.0), 1.0);
 }
 )");
 }
@@ -180,7 +189,7 @@ void main() {
     // Premultiplied: over a transparent background the ground fades into alpha.
     float alpha = mix(1.0, uBackgroundAlpha, fade);
     fragColor = vec4(mix(color, uBackground * uBackgroundAlpha, fade), alpha);
-    writePasses(vWorld, vec3(0.0, 1.0, 0.0), alpha);
+    writePasses(vWorld, vec3(0.0, 1.0, 0.0), vec3(0.0), alpha);
 }
 )");
 }

@@ -13,7 +13,7 @@ namespace globular::detail {
 
 namespace {
 
-enum Array { kX, kY, kZ, kRadius, kSpeed };
+enum Array { kX, kY, kZ, kRadius, kSpeed, kVx, kVy, kVz };
 
 // Sprites are chosen below this fraction of the largest size the vertex shader accepts,
 // so a float difference between this file and the shader cannot lose a sphere.
@@ -63,9 +63,9 @@ SpherePass::SpherePass(int samples)
       mSquareArray(gl::makeVertexArray()),
       mTileArray(gl::makeVertexArray()),
       mArrays{gl::makeBuffer(), gl::makeBuffer(), gl::makeBuffer(), gl::makeBuffer(),
-              gl::makeBuffer()},
+              gl::makeBuffer(), gl::makeBuffer(), gl::makeBuffer(), gl::makeBuffer()},
       mTextures{gl::makeTexture(), gl::makeTexture(), gl::makeTexture(), gl::makeTexture(),
-                gl::makeTexture()},
+                gl::makeTexture(), gl::makeTexture(), gl::makeTexture(), gl::makeTexture()},
       mCorners(gl::makeBuffer()),
       mSquares(gl::makeBuffer()),
       mSquareIds(gl::makeBuffer()),
@@ -106,9 +106,11 @@ SpherePass::SpherePass(int samples)
 
 void SpherePass::upload(const Globules& g, Value value, const FrameUniforms& f) {
     const bool withSpeed = value == Value::Speed;
+    const bool withMotion = f.frameSeconds > 0;
     const std::size_t n = g.size();
     if (g.py.size() != n || g.pz.size() != n || g.radius.size() != n ||
-        (withSpeed && (g.vx.size() != n || g.vy.size() != n || g.vz.size() != n))) {
+        ((withSpeed || withMotion) &&
+         (g.vx.size() != n || g.vy.size() != n || g.vz.size() != n))) {
         throw Error("render: the globules' arrays have different lengths");
     }
     mCount = n;
@@ -126,7 +128,11 @@ void SpherePass::upload(const Globules& g, Value value, const FrameUniforms& f) 
         std::copy(g.temperature.begin(), g.temperature.end(), speed.begin());
     }
     uploadFloats(mArrays[kSpeed], speed.data(), speed.size());
-    for (int i = kX; i <= kSpeed; ++i) {
+    const float still = 0;
+    uploadFloats(mArrays[kVx], withMotion ? g.vx.data() : &still, withMotion ? n : 1);
+    uploadFloats(mArrays[kVy], withMotion ? g.vy.data() : &still, withMotion ? n : 1);
+    uploadFloats(mArrays[kVz], withMotion ? g.vz.data() : &still, withMotion ? n : 1);
+    for (int i = kX; i <= kVz; ++i) {
         glBindTexture(GL_TEXTURE_BUFFER, mTextures[i].id());
         glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, mArrays[i].id());
     }
@@ -301,8 +307,8 @@ void SpherePass::drawShading(const FrameUniforms& f, const FrameTarget& target) 
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(mSamples > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D, target.idTexture());
     glUniform1i(mShade.uniform("uIds"), 1);
-    const char* names[] = {"uX", "uY", "uZ", "uRadius", "uValue"};
-    for (int i = kX; i <= kSpeed; ++i) {
+    const char* names[] = {"uX", "uY", "uZ", "uRadius", "uValue", "uVx", "uVy", "uVz"};
+    for (int i = kX; i <= kVz; ++i) {
         glActiveTexture(GL_TEXTURE2 + i);
         glBindTexture(GL_TEXTURE_BUFFER, mTextures[i].id());
         glUniform1i(mShade.uniform(names[i]), 2 + i);

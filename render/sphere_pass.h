@@ -32,8 +32,9 @@ class SpherePass {
   public:
     /// @param samples of the frame target the passes draw into.
     explicit SpherePass(int samples);
-    /// Uploads positions, radii and (when @p withSpeed) speeds, and picks the spheres too
-    /// big for a sprite in @p frame's camera or light view.
+    /// Uploads positions, radii, the value and (with frame.frameSeconds > 0, the motion
+    /// pass) velocities, and picks the spheres too big for a sprite in @p frame's camera
+    /// or light view.
     /// The value each sphere carries to the shader (its colour by color_by).
     enum class Value { None, Speed, Material, Temperature };
     void upload(const Globules& globules, Value value, const FrameUniforms& frame);
@@ -63,8 +64,10 @@ class SpherePass {
     float mMaxSprite;  // pixels or texels; bigger spheres are drawn as squares
     gl::Program mVisibilityPoints, mVisibilitySquares, mShade, mShadowPoints, mShadowSquares;
     gl::VertexArray mPointArray, mSquareArray, mTileArray;
-    std::array<gl::Buffer, 5> mArrays;     // x, y, z, radius, value (speed, material or temperature)
-    std::array<gl::Texture, 5> mTextures;  // the same, as buffer textures
+    // x, y, z, radius, value (speed, material or temperature), and the velocity's x, y, z
+    // (with the motion pass; one zero otherwise)
+    std::array<gl::Buffer, 8> mArrays;
+    std::array<gl::Texture, 8> mTextures;  // the same, as buffer textures
     gl::Buffer mCorners, mSquares, mSquareIds, mTiles;
     gl::Buffer mVisibleIndices, mShadowIndices;  // element arrays of the culled sprites
     bool mCulling = true;

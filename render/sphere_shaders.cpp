@@ -180,6 +180,9 @@ uniform samplerBuffer uY;
 uniform samplerBuffer uZ;
 uniform samplerBuffer uRadius;
 uniform samplerBuffer uValue;
+uniform samplerBuffer uVx;  // velocity, world units/s (zero without the motion pass)
+uniform samplerBuffer uVy;
+uniform samplerBuffer uVz;
 uniform float uSpecular;
 layout(location = 0) out vec4 fragColor;
 
@@ -209,7 +212,10 @@ void main() {
     vec3 hit = uEye + sphereHitDistance(uEye, dir, c, r, outside, along) * dir;
     vec3 n = normalize(hit - c);
     fragColor = vec4(shade(hit, n, albedo, uSpecular), 1.0);
-    writePasses(hit, n, 1.0);
+    vec3 velocity = uFrameSeconds > 0.0 ? vec3(texelFetch(uVx, k).r, texelFetch(uVy, k).r,
+                                               texelFetch(uVz, k).r)
+                                          : vec3(0.0);
+    writePasses(hit, n, velocity, 1.0);
 }
 )");
 }

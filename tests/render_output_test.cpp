@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <numbers>
 
 #include "color_ramp.h"
 #include "errors.h"
@@ -97,6 +98,11 @@ TEST(RenderPasses, MeshAndGroundWriteThePassesToo) {
     const std::size_t ground = at(kWidth / 2, kHeight - 2);  // bottom middle: the ground
     EXPECT_NEAR(f.normal[3 * ground + 1], 1.0f, 1e-3f);
     EXPECT_LT(f.depth[ground], 20.0f);
+    // A mesh has no velocities: no motion pass, whatever the interval.
+    s.frameSeconds = 0.04;
+    renderer.drawMesh({positions, normals, 4, triangles, 2, false, nullptr}, s);
+    EXPECT_TRUE(f.motion.empty());
+    EXPECT_TRUE(f.hasPasses());
 }
 
 TEST(RenderPasses, TransparentBackgroundHasAlphaZeroAroundTheSubject) {
@@ -151,6 +157,33 @@ TEST(RenderPasses, ExposureOfOneStopDoublesTheLinearColour) {
                 std::lround(255 * linearToSrgb(acesFilmic(float(srgbToLinear(0.3))))), 1);
 }
 
+TEST(RenderPasses, MotionIsTheScreenShiftOverOneFrameInPixels) {
+    Renderer renderer(kWidth, kHeight, 4, 1024, true);
+    FrameSetup s = sphereSetup();
+    s.frameSeconds = 0.04;
+    Globules g;
+    g.add({0, 0, 0}, {25, 0, 0}, 2.0f, 1, 0);  // one unit to the right per frame
+    renderer.drawSpheres(g, s);
+    const LinearFrame& f = renderer.lastFrame();
+    ASSERT_EQ(f.motion.size(), std::size_t(2) * kWidth * kHeight);
+    // The front point, 8 units away, moves 1 unit: focal length (pixels) / 8.
+    const double focal = 0.5 * kHeight / std::tan(30 * std::numbers::pi / 180);
+    const std::size_t c = at(kWidth / 2, kHeight / 2);
+    EXPECT_NEAR(f.motion[2 * c], focal / 8, 0.05);
+    EXPECT_NEAR(f.motion[2 * c + 1], 0.0, 0.01);
+    EXPECT_EQ(f.motion[2 * at(0, 0)], 0.0f);  // nothing there
+    // Up and towards the camera: up on the screen, and spreading out from the centre.
+    g.vx[0] = 0;
+    g.vy[0] = 25;
+    renderer.drawSpheres(g, s);
+    EXPECT_NEAR(f.motion[2 * c + 1], focal / 8, 0.05);
+    // Without an interval, or in mesh mode, there is no motion pass.
+    s.frameSeconds = 0;
+    renderer.drawSpheres(g, s);
+    EXPECT_TRUE(f.motion.empty());
+    EXPECT_TRUE(f.hasPasses());
+}
+
 /// Reads channel @p name of @p path as floats, rows top first.
 std::vector<float> readChannel(const fs::path& path, const char* name) {
     Imf::InputFile file(path.c_str());
@@ -194,6 +227,17 @@ TEST(Exr, HoldsLinearRgbaDepthAndNormalWithTheirTypes) {
     EXPECT_EQ(readChannel(path, "A")[c], 1.0f);
     EXPECT_EQ(readChannel(path, "A")[corner], 0.0f);
     EXPECT_EQ(readChannel(path, "R")[corner], 0.0f);
+    // With motion: forward.u and forward.v, half.
+    Globules moving = sphereAtOrigin();
+    moving.vx[0] = 25;
+    s.frameSeconds = 0.04;
+    renderer.drawSpheres(moving, s);
+    writeExr(path, renderer.lastFrame());
+    const auto withMotion = channelsOf(path);
+    EXPECT_EQ(withMotion.size(), 10u);
+    EXPECT_EQ(withMotion.at("forward.u"), Imf::HALF);
+    EXPECT_EQ(withMotion.at("forward.v"), Imf::HALF);
+    EXPECT_GT(readChannel(path, "forward.u")[c], 10.0f);
     // Without passes: colour and alpha only.
     Renderer plain(kWidth, kHeight, 1, 1024);
     plain.drawSpheres(sphereAtOrigin(), sphereSetup());
@@ -255,7 +299,9 @@ TEST(RenderStageOutput, SixteenBitPngMatchesTheEightBitFrameAndExrSitsBesideIt) 
     EXPECT_LE(worst, 1);
     const fs::path exr = dir / "frames" / "frame.0001.exr";
     ASSERT_TRUE(fs::exists(exr));
-    EXPECT_EQ(channelsOf(exr).size(), 8u);
+    // Spheres at the scene's fps (25): with the motion pass.
+    EXPECT_EQ(channelsOf(exr).size(), 10u);
+    EXPECT_EQ(channelsOf(exr).count("forward.u"), 1u);
 
     job.render.pngBits = 8;
     job.render.transparent = true;
