@@ -29,6 +29,25 @@ vec3 albedoFor(float value) {
 }
 )";
 
+// The environment: the light arriving from every direction (sky, or an HDR file).
+// environmentRadiance() is the seam other passes (reflections, refraction) call; its
+// signature stays as it is.
+const char* const kEnvironmentLibrary = R"(
+const float PI = 3.14159265358979;
+uniform vec3 uSkyZenith;        // linear radiance straight up
+uniform vec3 uSkyHorizon;       // ... at the horizon
+uniform vec3 uSkyGround;        // ... from below (the ground's bounce)
+uniform float uEnvironmentIntensity;
+
+// Radiance arriving from @p worldDirection (unit, pointing away from the surface),
+// averaged over a GGX lobe of perceptual @p roughness (0 = mirror, 1 = fully rough).
+vec3 environmentRadiance(vec3 worldDirection, float roughness) {
+    float y = worldDirection.y;
+    vec3 sky = mix(uSkyHorizon, uSkyZenith, sqrt(max(y, 0.0)));
+    return uEnvironmentIntensity * mix(uSkyGround, sky, smoothstep(-0.05, 0.05, y));
+}
+)";
+
 // One key light with a shadow map, optional fill lights, and a sky term; Blinn-Phong.
 const char* const kShadingLibrary = R"(
 uniform vec3 uEye;
@@ -97,7 +116,7 @@ vec3 shade(vec3 p, vec3 n, vec3 albedo, float specular) {
 
 std::string version() { return kVersion; }
 std::string fragment(const std::string& body) {
-    return version() + kColorLibrary + kShadingLibrary + body;
+    return version() + kColorLibrary + kEnvironmentLibrary + kShadingLibrary + body;
 }
 std::string vertex(const std::string& body) { return version() + kColorLibrary + body; }
 
