@@ -1,69 +1,78 @@
 #include "gl_context.h"
 
-#include <array>
-#include <mutex>
+#include <cstdlib>
+#include <optional>
 
 #include "errors.h"
 #include "gl_api.h"
+#include "gl_backends.h"
 
 namespace globular {
 
 namespace {
 
-// Core 4.2 is what the renderer uses (GLSL 420: early fragment tests, gl_SampleMask,
-// buffer textures, multisample textures); asking for it lets Mesa hand out its newest
-// core version (4.5 on Debian 12's Mesa 22.3).
-constexpr int kMajor = 4;
-constexpr int kMinor = 2;
-
-struct ProcessContext {
-    OSMesaContext context = nullptr;
-    std::array<unsigned char, 4> pixel{};  // the context's default framebuffer: unused
-};
-
-ProcessContext& processContext() {
-    static ProcessContext shared;
-    static std::once_flag created;
-    std::call_once(created, [] {
-        // clang-format off
-        const int attributes[] = {
-            OSMESA_FORMAT, OSMESA_RGBA,
-            OSMESA_DEPTH_BITS, 0,  // frames are drawn into framebuffer objects
-            OSMESA_STENCIL_BITS, 0,
-            OSMESA_ACCUM_BITS, 0,
-            OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-            OSMESA_CONTEXT_MAJOR_VERSION, kMajor,
-            OSMESA_CONTEXT_MINOR_VERSION, kMinor,
-            0};
-        // clang-format on
-        shared.context = OSMesaCreateContextAttribs(attributes, nullptr);
-    });
-    if (!shared.context) {
-        throw Error("render: OSMesa could not create an OpenGL " + std::to_string(kMajor) + "." +
-                    std::to_string(kMinor) +
-                    " core profile context (is Mesa's libOSMesa built with llvmpipe? "
-                    "Debian: apt install libosmesa6)");
-    }
-    return shared;
+std::optional<GlBackend> parse(const std::string& name) {
+    if (name == "osmesa") return GlBackend::OSMesa;
+    if (name == "egl") return GlBackend::Egl;
+    return std::nullopt;
 }
+
+std::optional<GlBackend>& selected() {
+    static std::optional<GlBackend> backend;
+    return backend;
+}
+
+// The back end whose context is current on this thread, if any: the two keep their own
+// notion of "current", so switching releases the other first.
+thread_local std::optional<GlBackend> current;
 
 }  // namespace
 
-void makeGlContextCurrent() {
-    ProcessContext& shared = processContext();
-    if (OSMesaGetCurrentContext() == shared.context) return;
-    if (!OSMesaMakeCurrent(shared.context, shared.pixel.data(), GL_UNSIGNED_BYTE, 1, 1)) {
-        throw Error("render: OSMesaMakeCurrent failed for the OpenGL core context");
-    }
+const char* glBackendName(GlBackend backend) {
+    return backend == GlBackend::Egl ? "egl" : "osmesa";
 }
 
-std::string glContextDescription() {
-    makeGlContextCurrent();
+GlBackend chooseGlBackend(const std::string& setting) {
+    if (const char* env = std::getenv("GLOBULAR_GL"); env && *env) {
+        if (const auto b = parse(env)) return *b;
+        throw Error(std::string("render: GLOBULAR_GL = \"") + env +
+                    "\": the OpenGL back end must be \"osmesa\" or \"egl\"");
+    }
+    if (const auto b = parse(setting)) return *b;
+    throw Error("render: OpenGL back end \"" + setting + "\": must be \"osmesa\" or \"egl\"");
+}
+
+void selectGlBackend(GlBackend backend) { selected() = backend; }
+
+GlBackend selectedGlBackend() {
+    if (!selected()) selected() = chooseGlBackend("osmesa");
+    return *selected();
+}
+
+void makeGlContextCurrent(GlBackend backend) {
+    if (current == backend) return;
+    if (current == GlBackend::OSMesa) detail::releaseOsMesa();
+    if (current == GlBackend::Egl) detail::releaseEgl();
+    current.reset();
+    if (backend == GlBackend::Egl) {
+        detail::makeEglCurrent();
+    } else {
+        detail::makeOsMesaCurrent();
+    }
+    current = backend;
+}
+
+void makeGlContextCurrent() { makeGlContextCurrent(selectedGlBackend()); }
+
+std::string glContextDescription(GlBackend backend) {
+    makeGlContextCurrent(backend);
     auto text = [](GLenum name) {
         const GLubyte* s = glGetString(name);
         return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
     };
     return text(GL_VERSION) + ", " + text(GL_RENDERER);
 }
+
+std::string glContextDescription() { return glContextDescription(selectedGlBackend()); }
 
 }  // namespace globular

@@ -127,6 +127,25 @@ void RenderSettings::describe(SettingsSection& s) {
     s.flag("transparent", transparent,
            "transparent background: alpha 0 where nothing is drawn (PNG RGBA, EXR A); the "
            "ground, when drawn, fades into alpha instead of the background colour");
+    s.flag("motion_blur", motionBlur,
+           "motion blur: each frame averages motion_samples sub-frames over the shutter, the "
+           "globules moved along their velocities (spheres; a surface mesh has none and stays "
+           "sharp)");
+    s.number("shutter", shutter, kUnit,
+             "time the shutter is open, as a fraction of the frame interval 1/fps, centred on "
+             "the frame's instant (0.5: a 180-degree shutter)");
+    s.integer("motion_samples", motionSamples, 1, 256,
+              "sub-frames averaged per frame for motion blur and depth of field (the frame "
+              "costs that many renders)");
+    s.number("aperture", aperture, NumberRange::nonNegative(),
+             "depth of field: radius of the thin lens, world units; 0 = a pinhole, all sharp");
+    s.number("focus_distance", focusDistance, NumberRange::nonNegative(),
+             "depth of field: distance from the eye to the plane in focus, world units; 0 = "
+             "the camera's target");
+    s.choice("gl", gl, {"osmesa", "egl"},
+             "OpenGL back end: osmesa (Mesa's llvmpipe, off-screen) or egl (EGL surfaceless: "
+             "llvmpipe here, the GPU where there is one); the environment variable "
+             "GLOBULAR_GL, when set, wins");
 }
 
 void RenderSettings::validate() const { checkRender(*this, plainKeys("render")); }

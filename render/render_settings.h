@@ -41,6 +41,12 @@ struct RenderSettings {
     int64_t pngBits = 8;                 ///< bits per channel of the PNG frames: 8 or 16
     bool exr = false;                    ///< also write frames/frame.NNNN.exr (exr_image.h)
     bool transparent = false;            ///< background alpha 0 (PNG RGBA, EXR A)
+    bool motionBlur = false;             ///< accumulate sub-frames over the shutter (sub_frames.h)
+    double shutter = 0.5;                ///< open time, fraction of 1/fps, centred on the frame
+    int64_t motionSamples = 8;           ///< sub-frames accumulated (motion blur, depth of field)
+    double aperture = 0;                 ///< lens radius, world units; 0 = pinhole (no depth of field)
+    double focusDistance = 0;            ///< world units from the eye; 0 = the camera's target
+    std::string gl = "osmesa";           ///< OpenGL back end: osmesa | egl (gl_context.h)
 
     void describe(SettingsSection& section);
     /// @throw SceneError naming the key (e.g. color_by = speed with mode = surface,

@@ -10,6 +10,7 @@
 #include "contact_sheet.h"
 #include "errors.h"
 #include "exr_image.h"
+#include "gl_context.h"
 #include "frame_paths.h"
 #include "globule_cache.h"
 #include "mesh_input.h"
@@ -182,6 +183,7 @@ void runRenderStage(const RenderJob& job, const StageContext& ctx) {
     ctx.report().info("render: measuring " + std::to_string(total) + " frame(s) for framing");
     const std::vector<ColliderSolid> solids = job.colliders.solids();
     const FrameSetup setup = frameSetup(job, animationExtent(job, solids, ctx));
+    selectGlBackend(chooseGlBackend(job.render.gl));
     Renderer renderer(int(job.render.width), int(job.render.height), int(job.render.samples),
                       int(job.render.shadowMapSize), job.render.exr);
     const ToneMapping tone = ToneMapping::from(job.render.exposure, job.render.toneMapping);

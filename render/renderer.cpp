@@ -15,6 +15,7 @@
 #include "mesh_pass.h"
 #include "shadow_map.h"
 #include "sphere_pass.h"
+#include "sub_frames.h"
 #include "tone_map.h"
 
 namespace globular {
@@ -103,6 +104,7 @@ struct Renderer::Impl {
     detail::GroundPass ground;
     LinearFrame frame;
     bool culling = true;
+    GlBackend backend = GlBackend::OSMesa;  // its GL objects live in this back end's context
 
     Impl(int w, int h, int n, int shadowSize, bool passes)
         : width(w), height(h), samples(n), target(w, h, n, passes), shadowMap(shadowSize) {}
@@ -174,9 +176,46 @@ struct Renderer::Impl {
         return spheres && passes && s.frameSeconds > 0 ? float(s.frameSeconds) : 0.0f;
     }
 
-    /// Draws one frame: @p content has prepare(f), shadow(f) and draw(f) members.
+    /// Draws the frame of @p s as the average of its sub-frames (sub_frames.h) into
+    /// `frame`, and returns it encoded. @p drawSub(setup, seconds) draws one sub-frame
+    /// into `frame` with the content moved on by @p seconds.
+    template <typename DrawSub>
+    Image accumulate(const FrameSetup& s, DrawSub&& drawSub) {
+        const std::vector<SubFrame> subs = subFrames(s.render, s.frameSeconds);
+        if (subs.size() == 1) {
+            drawSub(s, subs.front().seconds);
+        } else {
+            LinearFrame sum;
+            const double tanHalf = std::tan(s.camera.fov * std::numbers::pi / 360.0);
+            const double focalX = 0.5 * height / tanHalf, focalY = focalX;  // square pixels
+            for (std::size_t k = 0; k < subs.size(); ++k) {
+                FrameSetup sub = s;
+                sub.camera = throughLens(s.camera, subs[k]);
+                drawSub(sub, subs[k].seconds);
+                const PixelShift shift = lensShift(s.camera, subs[k], s.render, focalX, focalY);
+                if (k == 0) {
+                    sum = frame;  // the passes come from the first sub-frame
+                    if (shift.x != 0 || shift.y != 0) {
+                        std::fill(sum.rgba.begin(), sum.rgba.end(), 0.0f);
+                        addShifted(sum.rgba, frame, shift);
+                    }
+                } else if (shift.x != 0 || shift.y != 0) {
+                    addShifted(sum.rgba, frame, shift);
+                } else {
+                    for (std::size_t i = 0; i < sum.rgba.size(); ++i) sum.rgba[i] += frame.rgba[i];
+                }
+            }
+            const float weight = 1.0f / float(subs.size());
+            for (float& v : sum.rgba) v *= weight;
+            frame = std::move(sum);
+        }
+        return encode8(frame, ToneMapping::from(s.render.exposure, s.render.toneMapping));
+    }
+
+    /// Draws one (sub-)frame into `frame`: @p content has prepare(f), shadow(f) and
+    /// draw(f) members.
     template <typename Content>
-    Image draw(const FrameSetup& s, const Bounds3& frameBox, Content&& content) {
+    void draw(const FrameSetup& s, const Bounds3& frameBox, Content&& content) {
         const Bounds3 box = withGround(s.content.empty ? frameBox : s.content, s.groundHeight);
         const detail::GroundLook look = groundLook(s, box);
         FrameUniforms f = uniforms(s, box, look.fadeEnd);
@@ -215,13 +254,13 @@ struct Renderer::Impl {
         if (s.render.ground) ground.draw(f, look);
         target.read(frame, f.frameSeconds > 0);
         gl::checkErrors("drawing a frame");
-        return encode8(frame, ToneMapping::from(s.render.exposure, s.render.toneMapping));
     }
 };
 
 Renderer::Renderer(int width, int height, int samples, int shadowMapSize, bool passes) {
     if (width <= 0 || height <= 0) throw Error("render: the image size must be positive");
-    makeGlContextCurrent();
+    const GlBackend backend = selectedGlBackend();
+    makeGlContextCurrent(backend);
     GLint maxSamples = 1;
     glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
     if (samples < 1 || samples > maxSamples) {
@@ -230,12 +269,19 @@ Renderer::Renderer(int width, int height, int samples, int shadowMapSize, bool p
                     std::to_string(maxSamples) + " (set [render] samples)");
     }
     mImpl = std::make_unique<Impl>(width, height, samples, shadowMapSize, passes);
+    mImpl->backend = backend;
 }
 
-Renderer::~Renderer() = default;
+Renderer::~Renderer() {
+    // Its GL objects are deleted in the context that holds them.
+    try {
+        if (mImpl) makeGlContextCurrent(mImpl->backend);
+    } catch (const std::exception&) {
+    }
+}
 
 Image Renderer::drawSpheres(const Globules& globules, const FrameSetup& setup) {
-    makeGlContextCurrent();
+    makeGlContextCurrent(mImpl->backend);
     Impl& im = *mImpl;
     if (!im.spheres) im.spheres.emplace(im.samples);
     im.spheres->setCulling(im.culling);
@@ -264,16 +310,22 @@ Image Renderer::drawSpheres(const Globules& globules, const FrameSetup& setup) {
         throw Error("render: color_by = \"temperature\" but the globules carry no temperature "
                     "(the scene has no [thermal] section)");
     }
-    return im.draw(s, own.box,
-                   Content{*im.spheres, im.target, globules,
-                           by == "speed"         ? Value::Speed
-                           : by == "material"    ? Value::Material
-                           : by == "temperature" ? Value::Temperature
-                                                 : Value::None});
+    const Value value = by == "speed"         ? Value::Speed
+                        : by == "material"    ? Value::Material
+                        : by == "temperature" ? Value::Temperature
+                                              : Value::None;
+    return im.accumulate(s, [&](const FrameSetup& sub, double seconds) {
+        if (seconds == 0) {
+            im.draw(sub, own.box, Content{*im.spheres, im.target, globules, value});
+        } else {
+            const Globules moved = movedBy(globules, seconds);
+            im.draw(sub, own.box, Content{*im.spheres, im.target, moved, value});
+        }
+    });
 }
 
 Image Renderer::drawMesh(const MeshView& mesh, const FrameSetup& setup) {
-    makeGlContextCurrent();
+    makeGlContextCurrent(mImpl->backend);
     Impl& im = *mImpl;
     if (!im.mesh) im.mesh.emplace();
     FrameSetup s = setup;
@@ -296,7 +348,10 @@ Image Renderer::drawMesh(const MeshView& mesh, const FrameSetup& setup) {
             pass.draw(f, mesh.closed ? detail::MeshPass::Cull::Back : detail::MeshPass::Cull::None);
         }
     };
-    return im.draw(s, own.box, Content{*im.mesh, mesh});
+    // The mesh carries no velocities: its sub-frames differ only by the lens.
+    return im.accumulate(s, [&](const FrameSetup& sub, double) {
+        im.draw(sub, own.box, Content{*im.mesh, mesh});
+    });
 }
 
 void Renderer::setOcclusionCulling(bool on) { mImpl->culling = on; }

@@ -18,8 +18,6 @@ namespace globular {
 
 namespace {
 
-constexpr std::size_t kGrain = 256;
-
 /// Adds the force of @p j on @p i to @p f.
 inline void addPair(const Globules& g, const PairForce& pair, std::size_t i, std::size_t j,
                     float f[3]) {
@@ -28,7 +26,15 @@ inline void addPair(const Globules& g, const PairForce& pair, std::size_t i, std
                     g.radius[i] + g.radius[j], f);
 }
 
-/// The smallest and largest radius.
+void checkThermal(const Globules& g, const PairTable& pairs) {
+    if (g.temperature.size() != g.size()) throw Error("a thermal scene, but globules without a temperature");
+    if (pairs.materials() > 1 && g.material.size() != g.size()) {
+        throw Error("several materials, but globules without one");
+    }
+}
+
+}  // namespace
+
 std::pair<float, float> radiusRange(const Globules& g) {
     if (g.empty()) return {1.0f, 1.0f};
     using Range = std::pair<float, float>;
@@ -43,8 +49,6 @@ std::pair<float, float> radiusRange(const Globules& g) {
         [](Range a, Range b) { return Range{std::min(a.first, b.first), std::max(a.second, b.second)}; });
 }
 
-}  // namespace
-
 void pairForcesAllPairs(const Globules& g, const PairForce& pair, Accelerations& forces) {
     pairForcesAllPairs(g, PairTable(pair), forces);
 }
@@ -55,328 +59,23 @@ std::pair<float, float> buildGrid(const Globules& g, const PairForce& pair, Neig
     return range;
 }
 
-namespace {
-
-/// One grid cell's members in a range of globules in grid order, and what is around them.
-struct CellGroup {
-    std::size_t last = 0;      ///< the members are [first, last)
-    float lo[3], hi[3];        ///< the members' bounding box
-    int runCount = 0;          ///< runs of candidates in the 27 cells around
-    std::size_t total = 0;     ///< globules in those runs
-    std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> runs;
-};
-
-/// The group of globule @p first's cell within [first, end) of @p s.
-void groupAt(const NeighborGrid& grid, const Globules& s, std::size_t first, std::size_t end,
-             NeighborGrid::RunCursor& cursor, CellGroup& group) {
-    const auto cell = grid.cellOf(s.px[first], s.py[first], s.pz[first]);
-    const float start[3] = {s.px[first], s.py[first], s.pz[first]};
-    for (int a = 0; a < 3; ++a) group.lo[a] = group.hi[a] = start[a];
-    std::size_t last = first + 1;
-    for (; last < end && grid.cellOf(s.px[last], s.py[last], s.pz[last]) == cell; ++last) {
-        const float p[3] = {s.px[last], s.py[last], s.pz[last]};
-        for (int a = 0; a < 3; ++a) {
-            group.lo[a] = std::min(group.lo[a], p[a]);
-            group.hi[a] = std::max(group.hi[a], p[a]);
-        }
-    }
-    group.last = last;
-    group.runCount = grid.neighborRuns(s.px[first], s.py[first], s.pz[first], cursor, group.runs);
-    group.total = 0;
-    for (int b = 0; b < group.runCount; ++b) group.total += group.runs[b].second - group.runs[b].first;
-}
-
-/// Sums forces on the globules [begin, end) of @p s, which are in grid order. Globules
-/// that share a cell are consecutive: they are handled as a group with shared candidates.
-template <int M, int N>
-void sumRange(const PairForce& pair, const NeighborGrid& grid, const Globules& s,
-              bool uniformRadius, std::size_t begin, std::size_t end, Accelerations& forces) {
-    const GlobuleArrays arrays{s.px.data(), s.py.data(), s.pz.data(),    s.vx.data(),
-                               s.vy.data(), s.vz.data(), s.radius.data()};
-    const float reach = pair.cutoff(1.0f), reach2 = reach * reach;
-    // The cell edge is the largest reach of any pair; a hair more keeps the box test
-    // conservative under rounding (the pair test decides).
-    const float groupReach = grid.cellSize() * 1.0001f;
-    NeighborGrid::RunCursor cursor;
-    CellGroup group;
-    GroupCandidates candidates;
-    candidates.uniformRadius = uniformRadius;
-    NeighborBatch batch;
-    for (std::size_t first = begin; first < end;) {
-        groupAt(grid, s, first, end, cursor, group);
-        const std::size_t last = group.last;
-        candidates.reserve(group.total);
-        candidates.count = 0;
-        for (int b = 0; b < group.runCount; ++b) {
-            collectGroupCandidates(arrays, group.runs[b].first, group.runs[b].second, group.lo,
-                                   group.hi, groupReach, candidates);
-        }
-        batch.reserve(candidates.count);
-        for (std::size_t k = first; k < last; ++k) {
-            batch.count = 0;
-            collectNeighbors(candidates, s.px[k], s.py[k], s.pz[k], s.vx[k], s.vy[k], s.vz[k],
-                             s.radius[k], reach2, batch);
-            float fx = 0, fy = 0, fz = 0;
-            sumBatch<M, N>(pair, batch, fx, fy, fz);
-            forces.x[k] = fx;
-            forces.y[k] = fy;
-            forces.z[k] = fz;
-        }
-        first = last;
-    }
-}
-
-using SumRange = void (*)(const PairForce&, const NeighborGrid&, const Globules&, bool,
-                          std::size_t, std::size_t, Accelerations&);
-
-/// What @p instance gives for the pair's exponents: instance.operator()<M, N>() with the
-/// exponents unrolled for the pairs the paper uses, <0, 0> (pow()) otherwise.
-template <typename Instance>
-auto forExponents(const PairForce& pair, Instance&& instance) {
-    if (pair.integerExponents) {
-        const int m = pair.mInt, n = pair.nInt;
-        if (m == 5 && n == 3) return instance.template operator()<5, 3>();
-        if (m == 5 && n == 1) return instance.template operator()<5, 1>();
-        if (m == 5 && n == 4) return instance.template operator()<5, 4>();
-        if (m == 10 && n == 3) return instance.template operator()<10, 3>();
-        if (m == 7 && n == 5) return instance.template operator()<7, 5>();
-        if (m == 12 && n == 6) return instance.template operator()<12, 6>();
-    }
-    return instance.template operator()<0, 0>();
-}
-
-/// The force loop for the material's exponents.
-SumRange kernelFor(const PairForce& pair) {
-    return forExponents(pair, []<int M, int N>() { return SumRange(sumRange<M, N>); });
-}
-
-}  // namespace
-
 void pairForcesSorting(Globules& g, const PairForce& pair, NeighborWorkspace& w,
-                       Accelerations& forces) {
-    const std::size_t n = g.size();
-    forces.resize(n);
-    if (n == 0) return;
-    const auto [smallest, largest] = buildGrid(g, pair, w.grid);
-    w.largestRadius = largest;
-    // The accelerations are about to be overwritten: their array is the reorder's scratch
-    // (no extra 4 bytes per globule).
-    g.permute(w.grid.sortedOrder(), forces.x);
-    const SumRange sum = kernelFor(pair);
-    const bool uniformRadius = smallest == largest;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          sum(pair, w.grid, g, uniformRadius, r.begin(), r.end(), forces);
-                      });
+                       Accelerations& forces, SimdPath path) {
+    forceKernels(path).sorting(g, pair, w, forces);
 }
-
-namespace {
-
-/// One pair's sum over a batch: sumBatch for the pair's exponents.
-using SumBatch = void (*)(const PairForce&, const NeighborBatch&, float&, float&, float&);
-
-SumBatch batchKernelFor(const PairForce& pair) {
-    return forExponents(pair, []<int M, int N>() { return SumBatch(sumBatch<M, N>); });
-}
-
-/// sumRange for several materials: a cell's candidates gathered once per material, and
-/// each member summed over each material's with that pair's constants and kernel, in
-/// material order (the same order on any thread count).
-void sumRangeMixed(const PairTable& pairs, const std::vector<SumBatch>& kernels,
-                   const NeighborGrid& grid, const Globules& s, bool uniformRadius,
-                   std::size_t begin, std::size_t end, Accelerations& forces) {
-    const GlobuleArrays arrays{s.px.data(), s.py.data(), s.pz.data(),    s.vx.data(),
-                               s.vy.data(), s.vz.data(), s.radius.data()};
-    const std::size_t kinds = pairs.materials();
-    const float groupReach = grid.cellSize() * 1.0001f;
-    NeighborGrid::RunCursor cursor;
-    CellGroup group;
-    std::vector<GroupCandidates> candidates(kinds);
-    for (GroupCandidates& c : candidates) c.uniformRadius = uniformRadius;
-    NeighborBatch batch;
-    for (std::size_t first = begin; first < end;) {
-        groupAt(grid, s, first, end, cursor, group);
-        const std::size_t last = group.last;
-        for (GroupCandidates& c : candidates) {
-            c.reserve(group.total);
-            c.count = 0;
-        }
-        for (int b = 0; b < group.runCount; ++b) {
-            collectGroupCandidatesByMaterial(arrays, group.runs[b].first, group.runs[b].second,
-                                             group.lo, group.hi, groupReach, s.material.data(),
-                                             candidates);
-        }
-        batch.reserve(group.total);
-        for (std::size_t k = first; k < last; ++k) {
-            const std::size_t mine = s.material[k];
-            float fx = 0, fy = 0, fz = 0;
-            for (std::size_t kind = 0; kind < kinds; ++kind) {
-                if (candidates[kind].count == 0) continue;
-                const PairForce& pair = pairs(mine, kind);
-                const float reach = pair.cutoff(1.0f);
-                batch.count = 0;
-                collectNeighbors(candidates[kind], s.px[k], s.py[k], s.pz[k], s.vx[k], s.vy[k],
-                                 s.vz[k], s.radius[k], reach * reach, batch);
-                kernels[mine * kinds + kind](pair, batch, fx, fy, fz);
-            }
-            forces.x[k] = fx;
-            forces.y[k] = fy;
-            forces.z[k] = fz;
-        }
-        first = last;
-    }
-}
-
-}  // namespace
 
 void pairForcesSorting(Globules& g, const PairTable& pairs, NeighborWorkspace& w,
-                       Accelerations& forces) {
-    const std::size_t n = g.size();
-    forces.resize(n);
-    if (n == 0) return;
-    if (g.material.size() != n) throw Error("several materials, but globules without one");
-    const auto [smallest, largest] = radiusRange(g);
-    w.largestRadius = largest;
-    w.grid.build(g.px.data(), g.py.data(), g.pz.data(), n, pairs.cutoff(2.0f * largest));
-    g.permute(w.grid.sortedOrder(), forces.x);
-    std::vector<SumBatch> kernels;
-    for (std::size_t a = 0; a < pairs.materials(); ++a) {
-        for (std::size_t b = 0; b < pairs.materials(); ++b) kernels.push_back(batchKernelFor(pairs(a, b)));
-    }
-    const bool uniformRadius = smallest == largest;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          sumRangeMixed(pairs, kernels, w.grid, g, uniformRadius, r.begin(),
-                                        r.end(), forces);
-                      });
-}
-
-namespace {
-
-/// The blended force sum for a pair's exponents.
-using SumBlended = void (*)(const ThermalPair&, float, const NeighborBatch&, float&, float&, float&);
-
-/// What the thermal loop runs for one pair of materials in each phase.
-struct ThermalKernel {
-    ThermalPair pair;
-    float reach2 = 0;  ///< (the pair's reach in both phases)^2, in units of r_i + r_j
-    SumBatch solid, liquid;
-    SumBlended blended;
-
-    explicit ThermalKernel(const ThermalPair& p)
-        : pair(p),
-          solid(batchKernelFor(p.solid)),
-          liquid(batchKernelFor(p.liquid)),
-          blended(sumBlendedBatch<0, 0>) {
-        const float reach = std::max(p.solid.cutoff(1.0f), p.liquid.cutoff(1.0f));
-        reach2 = reach * reach;
-        const bool shared = p.solid.integerExponents && p.liquid.integerExponents &&
-                            p.solid.mInt == p.liquid.mInt && p.solid.nInt == p.liquid.nInt;
-        if (shared) {
-            blended = forExponents(p.solid, []<int M, int N>() { return SumBlended(sumBlendedBatch<M, N>); });
-        }
-    }
-};
-
-/// sumRangeMixed for thermal scenes: the candidates of a cell gathered once per material
-/// with their temperatures; for each member and material, the heat summed as the
-/// neighbours are collected and the force in the pair's phase (thermal_kernel.h).
-void sumRangeThermal(const std::vector<ThermalKernel>& kernels, std::size_t kinds,
-                     const NeighborGrid& grid, const Globules& s, bool uniformRadius,
-                     std::size_t begin, std::size_t end, Accelerations& forces) {
-    const GlobuleArrays arrays{s.px.data(), s.py.data(), s.pz.data(),     s.vx.data(),
-                               s.vy.data(), s.vz.data(), s.radius.data(), s.temperature.data()};
-    const float groupReach = grid.cellSize() * 1.0001f;
-    NeighborGrid::RunCursor cursor;
-    CellGroup group;
-    std::vector<GroupCandidates> candidates(kinds);
-    for (GroupCandidates& c : candidates) c.uniformRadius = uniformRadius;
-    std::vector<std::pair<float, float>> ranges(kinds);
-    NeighborBatch batch;
-    for (std::size_t first = begin; first < end;) {
-        groupAt(grid, s, first, end, cursor, group);
-        const std::size_t last = group.last;
-        for (GroupCandidates& c : candidates) {
-            c.reserve(group.total);
-            c.count = 0;
-        }
-        for (int b = 0; b < group.runCount; ++b) {
-            if (kinds == 1) {
-                collectGroupCandidates(arrays, group.runs[b].first, group.runs[b].second,
-                                       group.lo, group.hi, groupReach, candidates[0]);
-            } else {
-                collectGroupCandidatesByMaterial(arrays, group.runs[b].first, group.runs[b].second,
-                                                 group.lo, group.hi, groupReach, s.material.data(),
-                                                 candidates);
-            }
-        }
-        for (std::size_t kind = 0; kind < kinds; ++kind) {
-            const GroupCandidates& c = candidates[kind];
-            if (c.count > 0) ranges[kind] = temperatureRange(c.temperature.data(), c.count);
-        }
-        batch.reserve(group.total);
-        for (std::size_t k = first; k < last; ++k) {
-            const std::size_t mine = s.materialOf(k);
-            const float t = s.temperature[k];
-            float fx = 0, fy = 0, fz = 0, heat = 0;
-            for (std::size_t kind = 0; kind < kinds; ++kind) {
-                if (candidates[kind].count == 0) continue;
-                const ThermalKernel& kernel = kernels[mine * kinds + kind];
-                const ThermalPhase phase =
-                    phaseOf(kernel.pair, t, ranges[kind].first, ranges[kind].second);
-                NeighborHeat flow{t, kernel.pair.conductance, phase == ThermalPhase::Blend};
-                batch.count = 0;
-                collectNeighbors<true>(candidates[kind], s.px[k], s.py[k], s.pz[k], s.vx[k],
-                                       s.vy[k], s.vz[k], s.radius[k], kernel.reach2, batch, &flow);
-                heat += flow.heat;
-                if (phase == ThermalPhase::Blend) {
-                    kernel.blended(kernel.pair, t, batch, fx, fy, fz);
-                } else if (phase == ThermalPhase::Solid) {
-                    kernel.solid(kernel.pair.solid, batch, fx, fy, fz);
-                } else {
-                    kernel.liquid(kernel.pair.liquid, batch, fx, fy, fz);
-                }
-            }
-            forces.x[k] = fx;
-            forces.y[k] = fy;
-            forces.z[k] = fz;
-            forces.heat[k] = heat;
-        }
-        first = last;
-    }
-}
-
-void checkThermal(const Globules& g, const PairTable& pairs) {
-    if (g.temperature.size() != g.size()) throw Error("a thermal scene, but globules without a temperature");
-    if (pairs.materials() > 1 && g.material.size() != g.size()) {
+                       Accelerations& forces, SimdPath path) {
+    if (!g.empty() && g.material.size() != g.size()) {
         throw Error("several materials, but globules without one");
     }
+    forceKernels(path).sortingTable(g, pairs, w, forces);
 }
 
-}  // namespace
-
 void pairForcesThermal(Globules& g, const PairTable& pairs, NeighborWorkspace& w,
-                       Accelerations& forces) {
-    const std::size_t n = g.size();
-    forces.resize(n);
-    forces.heat.resize(n);
-    if (n == 0) return;
-    checkThermal(g, pairs);
-    const auto [smallest, largest] = radiusRange(g);
-    w.largestRadius = largest;
-    w.grid.build(g.px.data(), g.py.data(), g.pz.data(), n, pairs.cutoff(2.0f * largest));
-    g.permute(w.grid.sortedOrder(), forces.x);
-    const std::size_t kinds = pairs.materials();
-    std::vector<ThermalKernel> kernels;
-    for (std::size_t a = 0; a < kinds; ++a) {
-        for (std::size_t b = 0; b < kinds; ++b) kernels.emplace_back(pairs.thermal(a, b));
-    }
-    const bool uniformRadius = smallest == largest;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          sumRangeThermal(kernels, kinds, w.grid, g, uniformRadius, r.begin(),
-                                          r.end(), forces);
-                      });
+                       Accelerations& forces, SimdPath path) {
+    if (!g.empty()) checkThermal(g, pairs);
+    forceKernels(path).thermal(g, pairs, w, forces);
 }
 
 void pairForcesThermalAllPairs(const Globules& g, const PairTable& pairs, Accelerations& forces) {
@@ -439,10 +138,10 @@ void pairForcesAllPairs(const Globules& g, const PairTable& pairs, Accelerations
 }
 
 void pairForcesGrid(const Globules& g, const PairForce& pair, NeighborWorkspace& w,
-                    Accelerations& forces) {
+                    Accelerations& forces, SimdPath path) {
     Globules sorted = g;
     Accelerations sortedForces;
-    pairForcesSorting(sorted, pair, w, sortedForces);
+    pairForcesSorting(sorted, pair, w, sortedForces, path);
     const std::vector<uint32_t>& order = w.grid.sortedOrder();
     forces.resize(g.size());
     for (std::size_t k = 0; k < order.size(); ++k) {
@@ -579,12 +278,12 @@ void ForceField::compute(Globules& g, Accelerations& out) {
     const bool one = mPairs.materials() == 1;
     if (mExternal.thermal.enabled()) {
         mAllPairs ? pairForcesThermalAllPairs(g, mPairs, out)
-                  : pairForcesThermal(g, mPairs, mWorkspace, out);
+                  : pairForcesThermal(g, mPairs, mWorkspace, out, mSimd);
     } else if (mAllPairs) {
         one ? pairForcesAllPairs(g, mPairs(0, 0), out) : pairForcesAllPairs(g, mPairs, out);
     } else {
-        one ? pairForcesSorting(g, mPairs(0, 0), mWorkspace, out)
-            : pairForcesSorting(g, mPairs, mWorkspace, out);
+        one ? pairForcesSorting(g, mPairs(0, 0), mWorkspace, out, mSimd)
+            : pairForcesSorting(g, mPairs, mWorkspace, out, mSimd);
     }
     if (!mExternal.colliders.empty()) {  // the grid already knows it
         mLargestRadius = mAllPairs ? radiusRange(g).second : mWorkspace.largestRadius;

@@ -11,11 +11,13 @@
 
 #include "accelerations.h"
 #include "collider_set.h"
+#include "force_kernels.h"
 #include "material_pairs.h"
 #include "globules.h"
 #include "neighbor_grid.h"
 #include "pair_force.h"
 #include "pair_kernel.h"
+#include "simd_path.h"
 #include "simulation_settings.h"
 #include "thermal_sources.h"
 
@@ -31,23 +33,18 @@ struct ExternalForces {
 /// Sum of pair forces on each globule over all others: the paper's O(N^2) reference.
 void pairForcesAllPairs(const Globules& globules, const PairForce& pair, Accelerations& forces);
 
-/// What the grid force loop keeps between steps.
-struct NeighborWorkspace {
-    NeighborGrid grid;
-    float largestRadius = 0;  ///< of the globules the grid was last built over
-};
-
 /// The same sums over cell-list neighbours only. Sorts @p globules into neighbour-grid
 /// order first (every array, in place; the order depends only on the positions), so
 /// that a globule's neighbours lie in a few contiguous runs; @p forces come out in the
-/// new order.
+/// new order. @p path: the build of the loop that runs (simd_path.h).
 void pairForcesSorting(Globules& globules, const PairForce& pair, NeighborWorkspace& workspace,
-                       Accelerations& forces);
+                       Accelerations& forces, SimdPath path = activeSimdPath());
 
 /// pairForcesSorting for globules that must keep their order (tests, tools): works on a
 /// sorted copy; @p forces are in the order of @p globules.
 void pairForcesGrid(const Globules& globules, const PairForce& pair,
-                    NeighborWorkspace& workspace, Accelerations& forces);
+                    NeighborWorkspace& workspace, Accelerations& forces,
+                    SimdPath path = activeSimdPath());
 
 /// Builds @p grid over @p globules with cells one interaction cutoff wide.
 /// @return the smallest and largest radius (the cutoff follows the largest).
@@ -58,13 +55,13 @@ std::pair<float, float> buildGrid(const Globules& globules, const PairForce& pai
 /// @p pairs (globules.material gives each globule's). A cell's candidates are split by
 /// material, so every pair still goes through the single-material kernels.
 void pairForcesSorting(Globules& globules, const PairTable& pairs, NeighborWorkspace& workspace,
-                       Accelerations& forces);
+                       Accelerations& forces, SimdPath path = activeSimdPath());
 
 /// pairForcesSorting for thermal scenes (thermal_kernel.h): each pair's constants blended
 /// by its mean temperature, and the heat flowing into each globule in @p forces.heat.
 /// globules.temperature must be set (globules.material too with several materials).
 void pairForcesThermal(Globules& globules, const PairTable& pairs, NeighborWorkspace& workspace,
-                       Accelerations& forces);
+                       Accelerations& forces, SimdPath path = activeSimdPath());
 
 /// The O(N^2) reference of pairForcesThermal.
 void pairForcesThermalAllPairs(const Globules& globules, const PairTable& pairs,
@@ -117,6 +114,10 @@ public:
         mStepSeconds = dt;
     }
     ColliderSet& colliders() { return mExternal.colliders; }
+    /// The build of the grid force loops this field runs (activeSimdPath() unless set;
+    /// the caller checks simdPathSupported).
+    SimdPath simdPath() const { return mSimd; }
+    void setSimdPath(SimdPath path) { mSimd = path; }
     const ColliderSet& colliders() const { return mExternal.colliders; }
 
 private:
@@ -138,6 +139,7 @@ private:
     GroundPenalty mGround;  ///< mExternal.ground, ready for the loops
     bool mAllPairs;
     NeighborWorkspace mWorkspace;
+    SimdPath mSimd = activeSimdPath();
     double mStepSeconds = 0;
     float mLargestRadius = 1;  ///< of the last compute's globules
 };

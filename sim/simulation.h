@@ -84,6 +84,10 @@ public:
     const SimulationSetup& setup() const { return mSetup; }
     /// The colliders as they stand now (poses for the outputs).
     const ColliderSet& colliders() const { return mForces.colliders(); }
+    /// The build of the force loops this run uses (simd_path.h); a run's future depends
+    /// on it to rounding, so tests compare paths by setting it before the first step.
+    SimdPath simdPath() const { return mForces.simdPath(); }
+    void setSimdPath(SimdPath path) { mForces.setSimdPath(path); }
 
 private:
     /// Emits what emitter @p k has due at @p time.

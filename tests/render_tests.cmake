@@ -15,6 +15,8 @@ globular_test(renderer_tests
     SOURCES renderer_test.cpp
             render_golden_test.cpp
             render_output_test.cpp
+            motion_blur_test.cpp
+            gl_backend_test.cpp
     LIBS globular_render OpenEXR::OpenEXR Imath::Imath)
 globular_test(render_stage_tests
     SOURCES render_stage_test.cpp

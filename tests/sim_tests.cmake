@@ -8,3 +8,15 @@ globular_test(physics_test
     LIBS globular_sim)
 globular_test(mesh_sdf_test SOURCES mesh_sdf_test.cpp LIBS globular_sim)
 globular_test(thermal_test SOURCES thermal_test.cpp LIBS globular_sim)
+globular_test(simd_path_test SOURCES simd_path_test.cpp LIBS globular_sim)
+
+# The physics and thermal suites again on each build of the force loops (simd_path.h);
+# a path this CPU lacks is reported as skipped.
+foreach(path scalar avx2 avx512)
+    foreach(suite physics_test thermal_test)
+        add_test(NAME ${suite}.simd_${path} COMMAND ${suite})
+        set_tests_properties(${suite}.simd_${path} PROPERTIES
+            ENVIRONMENT GLOBULAR_SIMD=${path} SKIP_REGULAR_EXPRESSION "this CPU lacks"
+            TIMEOUT 600)
+    endforeach()
+endforeach()
