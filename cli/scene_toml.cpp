@@ -408,6 +408,10 @@ std::string resolvedSceneToml(const Scene& constScene) {
             collider.file = (scene.directory() / collider.file).lexically_normal().string();
         }
     }
+    std::string& environment = scene.render.environment;
+    if (!environment.empty() && std::filesystem::path(environment).is_relative()) {
+        environment = (scene.directory() / environment).lexically_normal().string();
+    }
     std::vector<std::pair<std::string, std::size_t>> sizes;
     SceneSections sections = bindSections(scene, sizes);
     std::ostringstream out;
@@ -448,7 +452,10 @@ std::string resolvedSceneToml(const Scene& constScene) {
         });
         if (material) phasesText(scene.material, "material");
     }
-    for (const auto& [name, elements] : sections.arrays) {
+    for (const auto& array : sections.arrays) {
+        // Named, not a structured binding: lambdas below capture it (clang 14 cannot).
+        const std::string& name = array.first;
+        const std::vector<SettingsSection>& elements = array.second;
         for (std::size_t i = 0; i < elements.size(); ++i) {
             out << "\n[[" << name << "]]\n";
             if (name == "emitter") {
