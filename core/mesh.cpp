@@ -67,6 +67,9 @@ void appendNumber(std::string& out, uint32_t v) {
 
 const std::vector<VertexAttribute>& knownVertexAttributes() {
     static const std::vector<VertexAttribute> known = {
+        {"vx", VertexAttribute::Type::Float32, {}},
+        {"vy", VertexAttribute::Type::Float32, {}},
+        {"vz", VertexAttribute::Type::Float32, {}},
         {"temperature", VertexAttribute::Type::Float32, {}},
         {"material", VertexAttribute::Type::Int32, {}},
     };

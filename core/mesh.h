@@ -7,8 +7,8 @@
 // OBJ files are text with v, vn and f a//a b//b c//c lines (indices from 1).
 // Triangles wind counter-clockwise seen from outside: (b - a) x (c - a) points outward,
 // along the vertex normals. Per-vertex scalars (VertexAttribute: the surface stage's
-// temperature and material) follow nx ny nz as PLY vertex properties of their names;
-// OBJ files carry none.
+// velocity vx vy vz, temperature and material) follow nx ny nz as PLY vertex properties
+// of their names; OBJ files carry none.
 
 #include <cstdint>
 #include <filesystem>
@@ -19,7 +19,7 @@
 namespace globular {
 
 /// One scalar per vertex, written as a PLY vertex property named @c name. A vector
-/// quantity is several of them (a velocity would be vx, vy, vz).
+/// quantity is several of them (the velocity is vx, vy, vz).
 struct VertexAttribute {
     enum class Type { Float32, Int32 };
     std::string name;

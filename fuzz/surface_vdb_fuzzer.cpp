@@ -40,7 +40,8 @@ using globular_fuzz::verbose;
 }
 
 /// Walks every active value and every leaf of @p grid in this process, under ASan.
-void walk(const openvdb::FloatGrid& grid) {
+template <typename GridT>
+void walk(const GridT& grid) {
     openvdb::Index64 values = 0;
     for (auto it = grid.cbeginValueOn(); it; ++it) values += it.getVoxelCount();
     if (values != grid.activeVoxelCount()) inconsistent("a tree whose active counts disagree");
@@ -68,6 +69,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
         }
         walk(*grids.surface);
         walk(*grids.density);
+        if (grids.temperature) walk(*grids.temperature);
+        if (grids.vel) {
+            if (grids.vel->getName() != "vel") inconsistent("a vel grid of another name");
+            walk(*grids.vel);
+        }
         if (verbose()) {
             std::fprintf(stderr, "surface_vdb_fuzzer: %llu + %llu active voxels\n",
                          static_cast<unsigned long long>(grids.surface->activeVoxelCount()),

@@ -102,4 +102,29 @@ void keepInside(FloatGrid& grid, const FloatGrid& levelSet, double margin) {
     openvdb::tools::pruneInactive(grid.tree());
 }
 
+openvdb::Vec3SGrid::Ptr velocityGrid(const FloatGrid& x, const FloatGrid& y, const FloatGrid& z) {
+    auto vel = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
+    vel->setTransform(x.transform().copy());
+    vel->setName("vel");
+    vel->setGridClass(openvdb::GRID_UNKNOWN);
+    vel->setVectorType(openvdb::VEC_CONTRAVARIANT_RELATIVE);
+    // The three grids share their leaves' layout (one splat): leaf by leaf, no lookups
+    // but the leaf's.
+    auto& tree = vel->tree();
+    const auto& ty = y.tree();
+    const auto& tz = z.tree();
+    for (auto leaf = x.tree().cbeginLeaf(); leaf; ++leaf) {
+        const auto* ly = ty.probeConstLeaf(leaf->origin());
+        const auto* lz = tz.probeConstLeaf(leaf->origin());
+        auto* out = tree.touchLeaf(leaf->origin());
+        for (auto it = leaf->cbeginValueOn(); it; ++it) {
+            const openvdb::Index i = it.pos();
+            out->setValueOn(i, openvdb::Vec3s(*it, ly ? ly->getValue(i) : 0.0f,
+                                              lz ? lz->getValue(i) : 0.0f));
+        }
+    }
+    openvdb::tools::pruneInactive(tree);
+    return vel;
+}
+
 }  // namespace globular

@@ -61,12 +61,22 @@ bool allAbove(const float* sum, float threshold) {
     return result;
 }
 
-/// What one block accumulates: the field's sum and, when a per-globule value is
-/// averaged (kMean), sum(w value) beside it, from the same kernel values.
+/// At most this many per-globule values are averaged in one pass (a velocity's three
+/// components and a temperature).
+constexpr int kMaxChannels = 4;
+
+/// The per-globule values averaged (kMean): one array per channel.
+struct Channels {
+    int count = 0;
+    const float* value[kMaxChannels] = {};
+};
+
+/// What one block accumulates: the field's sum and, when per-globule values are
+/// averaged (kMean), sum(w value) of each channel beside it, from the same kernel values.
 struct BlockSums {
-    float* sum;                   ///< 8^3 voxels
-    float* weighted = nullptr;    ///< 8^3 voxels; kMean only
-    const float* value = nullptr;  ///< per globule; kMean only
+    float* sum;                                ///< 8^3 voxels
+    float* weighted[kMaxChannels] = {};        ///< 8^3 voxels per channel; kMean only
+    const Channels* channels = nullptr;        ///< kMean only
 };
 
 /// Adds the globules of the blocks nearOrder()[from...] into @p out, the 8^3 voxels of
@@ -112,9 +122,11 @@ std::size_t addGlobules(const GlobuleBins& bins, uint64_t key, const KernelEval<
                 values += k;
                 std::memcpy(sum + offset, &values, sizeof values);
                 if constexpr (kMean) {
-                    std::memcpy(&values, out.weighted + offset, sizeof values);
-                    values += k * out.value[i];
-                    std::memcpy(out.weighted + offset, &values, sizeof values);
+                    for (int c = 0; c < out.channels->count; ++c) {
+                        std::memcpy(&values, out.weighted[c] + offset, sizeof values);
+                        values += k * out.channels->value[c][i];
+                        std::memcpy(out.weighted[c] + offset, &values, sizeof values);
+                    }
                 }
             }
         }
@@ -143,29 +155,42 @@ std::unique_ptr<LeafType> makeLeaf(const openvdb::Coord& origin, const float* va
 }
 
 /// The leaf of one block summed from nearOrder()[0] (see addGlobules), and with kMean the
-/// leaf of its sum(w value) in @p weighted; nullptr when no voxel of the block lies inside
-/// an influence sphere. @p next: where the sum stopped.
+/// leaves of each channel's sum(w value) in @p weighted[c * blocks + b]; nullptr when no
+/// voxel of the block lies inside an influence sphere. @p next: where the sum stopped.
 template <KernelType K, bool kMean>
-std::unique_ptr<LeafType> splatBlock(const GlobuleBins& bins, uint64_t key,
-                                     const KernelEval<K>& kernel, const float* value,
+std::unique_ptr<LeafType> splatBlock(const GlobuleBins& bins, std::size_t b,
+                                     const KernelEval<K>& kernel, const Channels& channels,
                                      float deepAbove, std::size_t& next,
-                                     std::unique_ptr<LeafType>& weighted) {
+                                     std::vector<std::unique_ptr<LeafType>>& weighted) {
+    const uint64_t key = bins.candidateBlocks()[b];
     const auto block = GlobuleBins::unpack(key);
-    alignas(sizeof(Row)) float sum[kDim * kDim * kDim] = {};
-    alignas(sizeof(Row)) float weightedSum[kMean ? kDim * kDim * kDim : 1] = {};
-    next = addGlobules<K, kMean>(bins, key, kernel, {sum, weightedSum, value}, 0, deepAbove);
+    constexpr int kVoxels = kDim * kDim * kDim;
+    alignas(sizeof(Row)) float sum[kVoxels] = {};
+    alignas(sizeof(Row)) float weightedSum[kMean ? kMaxChannels * kVoxels : 1] = {};
+    BlockSums out{sum};
+    if constexpr (kMean) {
+        out.channels = &channels;
+        for (int c = 0; c < channels.count; ++c) out.weighted[c] = weightedSum + c * kVoxels;
+    }
+    next = addGlobules<K, kMean>(bins, key, kernel, out, 0, deepAbove);
     bool touched = false;
     for (float v : sum) touched |= v > 0.0f;
     if (!touched) return nullptr;
 
     const openvdb::Coord origin(int(block[0] * kDim), int(block[1] * kDim), int(block[2] * kDim));
-    if constexpr (kMean) weighted = makeLeaf(origin, weightedSum, sum);
+    if constexpr (kMean) {
+        const std::size_t blocks = bins.candidateBlocks().size();
+        for (int c = 0; c < channels.count; ++c) {
+            weighted[std::size_t(c) * blocks + b] = makeLeaf(origin, out.weighted[c], sum);
+        }
+    }
     return makeLeaf(origin, sum, sum);
 }
 
-/// Splats every block into @p leaves and, with kMean, sum(w value) into @p weighted.
+/// Splats every block into @p leaves and, with kMean, each channel's sum(w value) into
+/// @p weighted (channel c of block b at c * blocks + b).
 template <KernelType K, bool kMean>
-void splatAll(const GlobuleBins& bins, const MetaballKernel& kernel, const float* value,
+void splatAll(const GlobuleBins& bins, const MetaballKernel& kernel, const Channels& channels,
               float deepAbove, std::vector<std::unique_ptr<LeafType>>& leaves,
               std::vector<std::unique_ptr<LeafType>>& weighted) {
     const KernelEval<K> eval(kernel);
@@ -173,11 +198,9 @@ void splatAll(const GlobuleBins& bins, const MetaballKernel& kernel, const float
     const std::size_t complete = bins.nearOrder().size();
     std::vector<uint32_t> next(blocks.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 16), [&](auto range) {
-        std::unique_ptr<LeafType> unused;
         for (std::size_t b = range.begin(); b < range.end(); ++b) {
             std::size_t n;
-            leaves[b] = splatBlock<K, kMean>(bins, blocks[b], eval, value, deepAbove, n,
-                                             kMean ? weighted[b] : unused);
+            leaves[b] = splatBlock<K, kMean>(bins, b, eval, channels, deepAbove, n, weighted);
             next[b] = uint32_t(n);
         }
     });
@@ -211,13 +234,23 @@ void splatAll(const GlobuleBins& bins, const MetaballKernel& kernel, const float
             if (deep) continue;
             LeafType& leaf = *leaves[b];
             float* sum = leaf.buffer().data();
-            float* weightedSum = kMean ? weighted[b]->buffer().data() : nullptr;
-            addGlobules<K, kMean>(bins, blocks[b], eval, {sum, weightedSum, value}, next[b],
-                                  INFINITY);
+            BlockSums out{sum};
+            if constexpr (kMean) {
+                out.channels = &channels;
+                for (int c = 0; c < channels.count; ++c) {
+                    out.weighted[c] = weighted[std::size_t(c) * blocks.size() + b]->buffer().data();
+                }
+            }
+            addGlobules<K, kMean>(bins, blocks[b], eval, out, next[b], INFINITY);
             for (int v = 0; v < kDim * kDim * kDim; ++v) {
                 if (sum[v] > 0.0f) {
                     leaf.setValueOn(openvdb::Index(v));
-                    if constexpr (kMean) weighted[b]->setValueOn(openvdb::Index(v));
+                    if constexpr (kMean) {
+                        for (int c = 0; c < channels.count; ++c) {
+                            weighted[std::size_t(c) * blocks.size() + b]->setValueOn(
+                                openvdb::Index(v));
+                        }
+                    }
                 }
             }
         }
@@ -225,7 +258,7 @@ void splatAll(const GlobuleBins& bins, const MetaballKernel& kernel, const float
 }
 
 template <bool kMean>
-void splatWithKernel(const GlobuleBins& bins, const MetaballKernel& kernel, const float* value,
+void splatWithKernel(const GlobuleBins& bins, const MetaballKernel& kernel, const Channels& value,
                      float deepAbove, std::vector<std::unique_ptr<LeafType>>& leaves,
                      std::vector<std::unique_ptr<LeafType>>& weighted) {
     switch (kernel.type) {
@@ -260,33 +293,51 @@ FloatGrid::Ptr splatMetaballs(const Globules& globules, const MetaballKernel& ke
                               double influence, double voxelSize, double deepAbove) {
     const GlobuleBins bins(globules, voxelSize, influence);
     std::vector<std::unique_ptr<LeafType>> leaves(bins.candidateBlocks().size()), unused;
-    splatWithKernel<false>(bins, kernel, nullptr, float(deepAbove), leaves, unused);
+    splatWithKernel<false>(bins, kernel, Channels{}, float(deepAbove), leaves, unused);
     return gridOf(leaves, voxelSize, "field");
 }
 
-MeanSplat splatMetaballsWithMean(const Globules& globules, const std::vector<float>& values,
+MeanSplat splatMetaballsWithMean(const Globules& globules,
+                                 const std::vector<const std::vector<float>*>& values,
                                  const MetaballKernel& kernel, double influence,
                                  double voxelSize, double deepAbove) {
-    if (values.size() != globules.size()) {
+    if (values.empty() || values.size() > std::size_t(kMaxChannels)) {
         throw Error("splatMetaballsWithMean: " + std::to_string(values.size()) +
-                    " values for " + std::to_string(globules.size()) + " globules");
+                    " value arrays (1 to " + std::to_string(kMaxChannels) + ")");
+    }
+    Channels channels;
+    for (const auto* v : values) {
+        if (v->size() != globules.size()) {
+            throw Error("splatMetaballsWithMean: " + std::to_string(v->size()) +
+                        " values for " + std::to_string(globules.size()) + " globules");
+        }
+        channels.value[channels.count++] = v->data();
     }
     const GlobuleBins bins(globules, voxelSize, influence);
     const std::size_t blocks = bins.candidateBlocks().size();
-    std::vector<std::unique_ptr<LeafType>> leaves(blocks), weighted(blocks);
-    splatWithKernel<true>(bins, kernel, values.data(), float(deepAbove), leaves, weighted);
+    std::vector<std::unique_ptr<LeafType>> leaves(blocks), weighted(values.size() * blocks);
+    splatWithKernel<true>(bins, kernel, channels, float(deepAbove), leaves, weighted);
     // sum(w value) / sum(w) where the field is; the background elsewhere.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 64), [&](auto range) {
         for (std::size_t b = range.begin(); b < range.end(); ++b) {
             if (!leaves[b]) continue;
             const float* sum = leaves[b]->buffer().data();
-            float* mean = weighted[b]->buffer().data();
-            for (openvdb::Index v = 0; v < LeafType::SIZE; ++v) {
-                mean[v] = sum[v] > 0.0f ? mean[v] / sum[v] : 0.0f;
+            for (std::size_t c = 0; c < values.size(); ++c) {
+                float* mean = weighted[c * blocks + b]->buffer().data();
+                for (openvdb::Index v = 0; v < LeafType::SIZE; ++v) {
+                    mean[v] = sum[v] > 0.0f ? mean[v] / sum[v] : 0.0f;
+                }
             }
         }
     });
-    return {gridOf(leaves, voxelSize, "field"), gridOf(weighted, voxelSize, "mean")};
+    MeanSplat splat{gridOf(leaves, voxelSize, "field"), {}};
+    for (std::size_t c = 0; c < values.size(); ++c) {
+        std::vector<std::unique_ptr<LeafType>> channel(
+            std::make_move_iterator(weighted.begin() + std::ptrdiff_t(c * blocks)),
+            std::make_move_iterator(weighted.begin() + std::ptrdiff_t((c + 1) * blocks)));
+        splat.means.push_back(gridOf(channel, voxelSize, "mean"));
+    }
+    return splat;
 }
 
 }  // namespace globular

@@ -20,20 +20,17 @@ SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& se
     frame.voxelSize = resolveVoxelSize(settings, globules);
     const MetaballKernel kernel = settings.metaballKernel();
     openvdb::FloatGrid::Ptr levelSet, temperature;
+    std::vector<openvdb::FloatGrid::Ptr> velocity;  // x, y, z
     {
         // Deep inside the liquid the field's exact value is never read: partial sums there
-        // (and the temperature there a mean over the nearer globules).
-        openvdb::FloatGrid::Ptr field;
-        if (globules.temperature.empty()) {
-            field = splatMetaballs(globules, kernel, settings.influence, frame.voxelSize,
-                                   settings.isoValue);
-        } else {
-            MeanSplat splat = splatMetaballsWithMean(globules, globules.temperature, kernel,
-                                                     settings.influence, frame.voxelSize,
-                                                     settings.isoValue);
-            field = splat.field;
-            temperature = splat.mean;
-        }
+        // (and the velocity and temperature there means over the nearer globules).
+        std::vector<const std::vector<float>*> values{&globules.vx, &globules.vy, &globules.vz};
+        if (!globules.temperature.empty()) values.push_back(&globules.temperature);
+        MeanSplat splat = splatMetaballsWithMean(globules, values, kernel, settings.influence,
+                                                 frame.voxelSize, settings.isoValue);
+        openvdb::FloatGrid::Ptr field = splat.field;
+        velocity.assign(splat.means.begin(), splat.means.begin() + 3);
+        if (!globules.temperature.empty()) temperature = splat.means[3];
         frame.fieldLeaves = field->tree().leafCount();
         levelSet = fieldToLevelSet(*field, settings.isoValue, settings.bandWidth);
     }  // the field is the largest grid: free it before the level-set steps
@@ -44,10 +41,18 @@ SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& se
 
     auto grids = std::make_shared<SurfaceGrids>();
     grids->surface = levelSet;
-    // The fog volume, the temperature and the mesh only read the level set: build them
-    // side by side.
+    // The fog volume, the velocity, the temperature and the mesh only read the level set:
+    // build them side by side.
     tbb::parallel_invoke(
         [&] { grids->density = levelSetToFog(*levelSet); },
+        [&] {
+            // Where the temperature is: inside and two voxels beyond, so that a renderer's
+            // trilinear lookup at the surface blurs motion with the liquid's velocity.
+            for (auto& component : velocity) {
+                keepInside(*component, *levelSet, 2.0 * frame.voxelSize);
+            }
+            grids->vel = velocityGrid(*velocity[0], *velocity[1], *velocity[2]);
+        },
         [&] {
             if (!temperature) return;
             // Two voxels beyond the surface: trilinear lookups at the surface then read no
@@ -64,7 +69,10 @@ SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& se
         });
 
     // Provenance for whoever opens the file in a DCC tool.
-    for (const auto& grid : {grids->surface, grids->density, grids->temperature}) {
+    for (const openvdb::GridBase::Ptr& grid : {openvdb::GridBase::Ptr(grids->surface),
+                                              openvdb::GridBase::Ptr(grids->density),
+                                              openvdb::GridBase::Ptr(grids->temperature),
+                                              openvdb::GridBase::Ptr(grids->vel)}) {
         if (!grid) continue;
         grid->insertMeta("globular_kernel", openvdb::StringMetadata(settings.kernel));
         grid->insertMeta("globular_iso_value", openvdb::FloatMetadata(float(settings.isoValue)));
@@ -79,6 +87,7 @@ void writeSurfaceVdb(const std::filesystem::path& path, const SurfaceFrame& fram
         throw IoError("cannot write " + path.string() + ": the frame has no grids");
     }
     openvdb::GridCPtrVec grids{frame.grids->surface, frame.grids->density};
+    if (frame.grids->vel) grids.push_back(frame.grids->vel);
     if (frame.grids->temperature) grids.push_back(frame.grids->temperature);
     writeVdbFile(path, grids);
 }
@@ -102,6 +111,23 @@ openvdb::FloatGrid::Ptr floatGridNamed(const openvdb::GridPtrVec& grids, const s
     throw std::runtime_error("no grid named '" + name + "'");
 }
 
+/// The grid named @p name of type @p GridT, or null when there is none.
+/// @throw std::runtime_error when it has another type.
+template <typename GridT>
+typename GridT::Ptr optionalGrid(const openvdb::GridPtrVec& grids, const std::string& name) {
+    for (const auto& grid : grids) {
+        if (grid && grid->getName() == name) {
+            auto typed = openvdb::gridPtrCast<GridT>(grid);
+            if (!typed) {
+                throw std::runtime_error("grid '" + name + "' is a " + grid->type() +
+                                         ", not a " + GridT::gridType());
+            }
+            return typed;
+        }
+    }
+    return nullptr;
+}
+
 /// Runs in the reader's child process: OpenVDB parses the file there, and what it read
 /// goes back to the parent in OpenVDB's own streamed encoding.
 std::string parseSurfaceFile(const std::filesystem::path& path) {
@@ -113,13 +139,15 @@ std::string parseSurfaceFile(const std::filesystem::path& path) {
         grids.push_back(file.readGrid(name));
     }
     if (file.hasGrid("temperature")) grids.push_back(file.readGrid("temperature"));
+    if (file.hasGrid("vel")) grids.push_back(file.readGrid("vel"));
     file.close();
     const auto surface = floatGridNamed(grids, "surface");
     if (surface->getGridClass() != openvdb::GRID_LEVEL_SET) {
         throw std::runtime_error("grid 'surface' is not a level set");
     }
     floatGridNamed(grids, "density");
-    if (grids.size() > 2) floatGridNamed(grids, "temperature");
+    optionalGrid<openvdb::FloatGrid>(grids, "temperature");
+    optionalGrid<openvdb::Vec3SGrid>(grids, "vel");
     return encodeVdb(openvdb::GridCPtrVec(grids.begin(), grids.end()), openvdb::MetaMap(),
                      /*seekable=*/false);
 }
@@ -135,7 +163,8 @@ SurfaceGrids readSurfaceVdb(const std::filesystem::path& path) {
         SurfaceGrids read;
         read.surface = floatGridNamed(*grids, "surface");
         read.density = floatGridNamed(*grids, "density");
-        if (grids->size() > 2) read.temperature = floatGridNamed(*grids, "temperature");
+        read.temperature = optionalGrid<openvdb::FloatGrid>(*grids, "temperature");
+        read.vel = optionalGrid<openvdb::Vec3SGrid>(*grids, "vel");
         return read;
     } catch (const std::exception& e) {
         throw IoError("cannot read " + path.string() + ": " + e.what());

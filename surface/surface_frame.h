@@ -19,10 +19,11 @@ namespace globular {
 struct SurfaceGrids;  // surface_grids.h: the OpenVDB level set and fog volume
 
 struct SurfaceFrame {
-    /// "surface" level set, "density" fog and, when the globules carry one, "temperature"
+    /// "surface" level set, "density" fog, "vel" velocity and, when the globules carry
+    /// one, "temperature"
     std::shared_ptr<SurfaceGrids> grids;
-    /// The level set's zero crossing; per-vertex temperature and material when the
-    /// globules carry them (vertex_attributes.h)
+    /// The level set's zero crossing; per-vertex velocity (vx vy vz), and temperature
+    /// and material when the globules carry them (vertex_attributes.h)
     TriangleMesh mesh;
     double voxelSize = 0;                 ///< world units, as resolved for this frame
     std::size_t fieldLeaves = 0;          ///< 8^3-voxel leaves the metaball field used
@@ -44,7 +45,7 @@ SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& se
                              const std::vector<PlacedSolid>& colliders = {},
                              bool severalMaterials = false);
 
-/// Writes the grids "surface", "density" and (when made) "temperature" of @p frame to one
+/// Writes the grids "surface", "density", "vel" and (when made) "temperature" of @p frame to one
 /// VDB file, atomically.
 /// @throw IoError naming @p path.
 void writeSurfaceVdb(const std::filesystem::path& path, const SurfaceFrame& frame);

@@ -8,7 +8,8 @@
 //   --removeDroplets--> --subtractColliders (collider_cut.h)-->
 //   level set "surface" --levelSetToFog--> fog "density"
 //                       --meshLevelSet---> TriangleMesh
-//   with temperature: splatMetaballsWithMean --> mean --keepInside--> "temperature"
+//   splatMetaballsWithMean --> means of vx vy vz (and temperature) --keepInside-->
+//                              "vel" (velocityGrid) and "temperature"
 
 #include <openvdb/openvdb.h>
 
@@ -32,9 +33,14 @@ struct SurfaceGrids {
     /// voxels beyond its surface), background 0, class "unknown"; null when the globules
     /// carry no temperature.
     openvdb::FloatGrid::Ptr temperature;
+    /// Kernel-weighted mean velocity of the globules, defined where temperature is
+    /// (inside the liquid and two voxels beyond), background 0, class unknown, vector
+    /// type contravariant relative (what Houdini and Blender read as a velocity); null
+    /// only in files written before it existed.
+    openvdb::Vec3SGrid::Ptr vel;
 };
 
-/// Reads the grids "surface", "density" and, when present, "temperature" of a file
+/// Reads the grids "surface", "density" and, when present, "temperature" and "vel" of a file
 /// written by writeSurfaceVdb (or any VDB file with float grids of those names,
 /// "surface" a level set). OpenVDB parses the file in a child process
 /// (isolated_parse.h), so a damaged file is an error, never a crash.
@@ -58,16 +64,18 @@ openvdb::FloatGrid::Ptr splatMetaballs(const Globules& globules, const MetaballK
                                        double deepAbove = std::numeric_limits<double>::infinity());
 
 /// The field of splatMetaballs and, from the same kernel values in the same pass, the
-/// kernel-weighted mean of a per-globule value: sum(w_i value_i) / sum(w_i) at every
+/// kernel-weighted means of per-globule values: sum(w_i value_i) / sum(w_i) at every
 /// active voxel of the field, 0 elsewhere. Where splatMetaballs leaves partial sums (see
 /// @p deepAbove) the mean is over the nearer globules, still a weighted mean.
 struct MeanSplat {
-    openvdb::FloatGrid::Ptr field;  ///< as splatMetaballs, named "field"
-    openvdb::FloatGrid::Ptr mean;   ///< the same active voxels, named "mean"
+    openvdb::FloatGrid::Ptr field;               ///< as splatMetaballs, named "field"
+    std::vector<openvdb::FloatGrid::Ptr> means;  ///< one per value array, named "mean"
 };
-/// @param values one per globule (a temperature).
-/// @throw Error when @p values is not one per globule; as splatMetaballs otherwise.
-MeanSplat splatMetaballsWithMean(const Globules& globules, const std::vector<float>& values,
+/// @param values 1 to 4 arrays, each one value per globule (a velocity component, a
+///        temperature).
+/// @throw Error when an array is not one per globule; as splatMetaballs otherwise.
+MeanSplat splatMetaballsWithMean(const Globules& globules,
+                                 const std::vector<const std::vector<float>*>& values,
                                  const MetaballKernel& kernel, double influence,
                                  double voxelSize,
                                  double deepAbove = std::numeric_limits<double>::infinity());
@@ -76,6 +84,12 @@ MeanSplat splatMetaballsWithMean(const Globules& globules, const std::vector<flo
 /// @p margin (world units), sets them to the background and prunes what is left empty:
 /// @p grid is then defined inside the level set's surface and a margin beyond it.
 void keepInside(openvdb::FloatGrid& grid, const openvdb::FloatGrid& levelSet, double margin);
+
+/// The vector grid of three float grids of the same active voxels (splatMetaballsWithMean's
+/// means of vx, vy, vz after keepInside): named "vel", background 0, class unknown,
+/// vector type VEC_CONTRAVARIANT_RELATIVE (a velocity: Houdini's and Blender's grids).
+openvdb::Vec3SGrid::Ptr velocityGrid(const openvdb::FloatGrid& x, const openvdb::FloatGrid& y,
+                                     const openvdb::FloatGrid& z);
 
 /// The narrow-band level set (negative inside) of the field's @p isoValue surface,
 /// computed directly from the field (band_distance.cpp): sub-voxel distances where the

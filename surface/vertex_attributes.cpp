@@ -49,6 +49,7 @@ void gather(const GlobuleBins& bins, const MetaballKernel& kernel, const double 
 
 CarriedAttributes attributesOf(const Globules& globules, bool severalMaterials) {
     CarriedAttributes which;
+    which.velocity = true;
     which.temperature = !globules.temperature.empty();
     which.material = severalMaterials || std::any_of(globules.material.begin(), globules.material.end(),
                                  [](uint8_t m) { return m != 0; });
@@ -60,6 +61,8 @@ void carryGlobuleAttributes(TriangleMesh& mesh, const Globules& globules,
                             CarriedAttributes which) {
     if (!which.any()) return;
     const std::size_t n = mesh.vertexCount();
+    std::vector<float> velocity[3];
+    for (auto& component : velocity) component.resize(which.velocity ? n : 0);
     std::vector<float> temperature(which.temperature ? n : 0);
     std::vector<float> material(which.material ? n : 0);
     const GlobuleBins bins(globules, voxelSize, influence);
@@ -81,6 +84,18 @@ void carryGlobuleAttributes(TriangleMesh& mesh, const Globules& globules,
             if (near.empty() && nearest != std::numeric_limits<uint32_t>::max()) {
                 near.push_back({nearest, 1.0f});
             }
+            if (which.velocity) {
+                double sum = 0, weighted[3] = {0, 0, 0};
+                for (const Weighted& g : near) {
+                    sum += g.weight;
+                    weighted[0] += double(g.weight) * globules.vx[g.globule];
+                    weighted[1] += double(g.weight) * globules.vy[g.globule];
+                    weighted[2] += double(g.weight) * globules.vz[g.globule];
+                }
+                for (int a = 0; a < 3; ++a) {
+                    velocity[a][v] = sum > 0 ? float(weighted[a] / sum) : 0.0f;
+                }
+            }
             if (which.temperature) {
                 double sum = 0, weighted = 0;
                 for (const Weighted& g : near) {
@@ -97,6 +112,13 @@ void carryGlobuleAttributes(TriangleMesh& mesh, const Globules& globules,
             }
         }
     });
+    if (which.velocity) {
+        const char* names[3] = {"vx", "vy", "vz"};
+        for (int a = 0; a < 3; ++a) {
+            mesh.attributes.push_back(
+                {names[a], VertexAttribute::Type::Float32, std::move(velocity[a])});
+        }
+    }
     if (which.temperature) {
         mesh.attributes.push_back(
             {"temperature", VertexAttribute::Type::Float32, std::move(temperature)});

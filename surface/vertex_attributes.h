@@ -3,11 +3,12 @@
 // own kernel: at each vertex, every globule within its influence radius R weighs
 // w = kernel(r^2 / R^2) (metaball_kernel.h), the weights the field itself sums there.
 //
+//   vx vy vz (float):    sum(w v) / sum(w), the kernel-weighted mean velocity (what
+//                        Houdini's v and Blender's velocity attribute are made from)
 //   temperature (float): sum(w T) / sum(w), the kernel-weighted mean
 //   material (int):      the material with the largest sum of w (ties: the lower index)
 //
-// Each vertex gathers its weighted globules once and every attribute reads that list,
-// so another weighted mean (a velocity as vx, vy, vz) is one more reader of it.
+// Each vertex gathers its weighted globules once and every attribute reads that list.
 // A vertex no globule reaches (a dilated or cut surface) takes the nearest globule's
 // values among those binned near it, or temperature 0 and material 0 when there is none.
 // OpenVDB-free.
@@ -20,12 +21,13 @@ namespace globular {
 
 /// Which attributes carryGlobuleAttributes adds.
 struct CarriedAttributes {
+    bool velocity = false;     ///< vx vy vz
     bool temperature = false;  ///< needs globules.temperature
     bool material = false;
-    bool any() const { return temperature || material; }
+    bool any() const { return velocity || temperature || material; }
 };
 
-/// What @p globules carry: temperature when they have one, material when the scene has
+/// What @p globules carry: velocity always, temperature when they have one, material when the scene has
 /// @p severalMaterials or some globule's material index is not 0 (so every frame of a
 /// scene of several materials carries it, and a scene of one leaves it out).
 CarriedAttributes attributesOf(const Globules& globules, bool severalMaterials = false);

@@ -151,7 +151,11 @@ TEST(SurfaceTemperature, PlainGlobulesGetNeitherGridNorAttributes) {
     g.temperature.clear();
     const SurfaceFrame frame = surfaceGlobules(g, coarse());
     EXPECT_FALSE(frame.grids->temperature);
-    EXPECT_TRUE(frame.mesh.attributes.empty());  // material 0 everywhere: left out
+    // Only the velocity, which every frame carries; material 0 everywhere: left out.
+    ASSERT_EQ(frame.mesh.attributes.size(), 3u);
+    EXPECT_EQ(frame.mesh.attributes[0].name, "vx");
+    EXPECT_EQ(frame.mesh.attribute("temperature"), nullptr);
+    EXPECT_EQ(frame.mesh.attribute("material"), nullptr);
 }
 
 TEST(SurfaceTemperature, TemperatureGridTravelsInTheSurfaceFile) {

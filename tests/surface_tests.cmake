@@ -22,3 +22,7 @@ globular_test(damaged_files_test
 globular_test(surface_temperature_tests
     SOURCES surface_temperature_test.cpp
     LIBS globular_surface OpenVDB::openvdb)
+# Velocity out of the surface stage: the "vel" grid and the mesh's vx vy vz (issue 16).
+globular_test(surface_velocity_tests
+    SOURCES surface_velocity_test.cpp
+    LIBS globular_surface OpenVDB::openvdb)

@@ -1,0 +1,161 @@
+// Velocity out of the surface stage: the "vel" grid (a kernel-weighted mean of the
+// globules' velocities, splatted with the field) and the mesh's vx vy vz, checked
+// against the same mean summed here directly from the kernel.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "mesh.h"
+#include "surface_frame.h"
+#include "surface_grids.h"
+
+namespace globular {
+namespace {
+
+namespace fs = std::filesystem;
+
+SurfaceSettings coarse() {
+    SurfaceSettings s;
+    s.voxelsPerRadius = 3;
+    return s;
+}
+
+/// A lattice block of globules of radius 1, spacing 1.1, all moving with @p v.
+Globules movingBlock(Vec3 v, int side) {
+    Globules g;
+    for (int x = 0; x < side; ++x) {
+        for (int y = 0; y < side; ++y) {
+            for (int z = 0; z < side; ++z) {
+                g.add({1.1 * x, 1.1 * y, 1.1 * z}, v, 1.0f, 1.0f, int32_t(g.size()));
+            }
+        }
+    }
+    return g;
+}
+
+/// sum(w v) / sum(w) at world point @p p, w = kernel(r^2 / R^2), R = influence * radius:
+/// the definition, summed over every globule.
+Vec3 weightedMean(const Globules& g, const SurfaceSettings& s, Vec3 p) {
+    const MetaballKernel kernel = s.metaballKernel();
+    double sum = 0;
+    Vec3 weighted{0, 0, 0};
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        const Vec3 d = g.position(i) - p;
+        const double r = s.influence * g.radius[i];
+        const double w = kernel.value(float((d.x * d.x + d.y * d.y + d.z * d.z) / (r * r)));
+        sum += w;
+        weighted = weighted + g.velocity(i) * w;
+    }
+    return weighted * (1.0 / sum);
+}
+
+const std::vector<float>& valuesOf(const TriangleMesh& mesh, const char* name) {
+    const VertexAttribute* a = mesh.attribute(name);
+    if (!a) throw std::runtime_error(std::string("no attribute ") + name);
+    return a->values;
+}
+
+TEST(SurfaceVelocity, BlockMovingTogetherHasItsVelocityEverywhere) {
+    const Vec3 v{1.5, -2.0, 0.25};
+    const Globules g = movingBlock(v, 4);
+    const SurfaceFrame frame = surfaceGlobules(g, coarse());
+    ASSERT_TRUE(frame.grids->vel);
+    const openvdb::Vec3SGrid& vel = *frame.grids->vel;
+    EXPECT_EQ(vel.getName(), "vel");
+    EXPECT_EQ(vel.getVectorType(), openvdb::VEC_CONTRAVARIANT_RELATIVE);
+    EXPECT_EQ(vel.getGridClass(), openvdb::GRID_UNKNOWN);
+    EXPECT_EQ(vel.background(), openvdb::Vec3s(0.0f));
+    EXPECT_GT(vel.activeVoxelCount(), 1000u);
+    for (auto it = vel.cbeginValueOn(); it; ++it) {
+        ASSERT_NEAR((*it)[0], 1.5f, 1e-5f) << it.getCoord();
+        ASSERT_NEAR((*it)[1], -2.0f, 1e-5f) << it.getCoord();
+        ASSERT_NEAR((*it)[2], 0.25f, 1e-5f) << it.getCoord();
+    }
+    // Defined through the liquid (the block's centre), not far outside.
+    auto acc = vel.getConstAccessor();
+    const int centre = int(std::lround(1.65 / frame.voxelSize));
+    EXPECT_TRUE(acc.isValueOn(openvdb::Coord(centre, centre, centre)));
+    EXPECT_FALSE(acc.isValueOn(openvdb::Coord(-int(std::ceil(3.0 / frame.voxelSize)), 0, 0)));
+
+    const auto& vx = valuesOf(frame.mesh, "vx");
+    const auto& vy = valuesOf(frame.mesh, "vy");
+    const auto& vz = valuesOf(frame.mesh, "vz");
+    ASSERT_EQ(vx.size(), frame.mesh.vertexCount());
+    for (std::size_t i = 0; i < vx.size(); ++i) {
+        ASSERT_NEAR(vx[i], 1.5f, 1e-5f);
+        ASSERT_NEAR(vy[i], -2.0f, 1e-5f);
+        ASSERT_NEAR(vz[i], 0.25f, 1e-5f);
+    }
+}
+
+TEST(SurfaceVelocity, TwoVelocitiesGiveTheKernelWeightedMean) {
+    Globules g;
+    g.add({-0.6, 0, 0}, {2, 0, 0}, 1.0f, 1.0f, 0);
+    g.add({0.7, 0.2, 0}, {0, 1, -1}, 1.3f, 1.0f, 1);
+    const SurfaceSettings s = coarse();
+    const SurfaceFrame frame = surfaceGlobules(g, s);
+    ASSERT_TRUE(frame.grids->vel);
+    const openvdb::Vec3SGrid& vel = *frame.grids->vel;
+    std::size_t mixed = 0;
+    for (auto it = vel.cbeginValueOn(); it; ++it) {
+        const openvdb::Vec3d p = vel.indexToWorld(it.getCoord());
+        const Vec3 expected = weightedMean(g, s, {p.x(), p.y(), p.z()});
+        ASSERT_NEAR((*it)[0], expected.x, 1e-4) << it.getCoord();
+        ASSERT_NEAR((*it)[1], expected.y, 1e-4) << it.getCoord();
+        ASSERT_NEAR((*it)[2], expected.z, 1e-4) << it.getCoord();
+        // Where both globules reach, neither velocity alone.
+        mixed += expected.x > 0.1 && expected.x < 1.9;
+    }
+    EXPECT_GT(mixed, 100u);
+    // Between the centres the weights are comparable: a true mix, not a pick.
+    const openvdb::Vec3s middle = vel.getConstAccessor().getValue(openvdb::Coord(0, 0, 0));
+    EXPECT_GT(middle[0], 0.3f);
+    EXPECT_LT(middle[0], 1.7f);
+
+    const auto& vx = valuesOf(frame.mesh, "vx");
+    const auto& vy = valuesOf(frame.mesh, "vy");
+    const auto& vz = valuesOf(frame.mesh, "vz");
+    ASSERT_GT(frame.mesh.vertexCount(), 100u);
+    for (std::size_t i = 0; i < frame.mesh.vertexCount(); ++i) {
+        const Vec3 p{frame.mesh.positions[3 * i], frame.mesh.positions[3 * i + 1],
+                     frame.mesh.positions[3 * i + 2]};
+        const Vec3 expected = weightedMean(g, s, p);
+        ASSERT_NEAR(vx[i], expected.x, 1e-4) << i;
+        ASSERT_NEAR(vy[i], expected.y, 1e-4) << i;
+        ASSERT_NEAR(vz[i], expected.z, 1e-4) << i;
+    }
+}
+
+TEST(SurfaceVelocity, VelGridAndMeshVelocityTravelInTheFiles) {
+    const Vec3 v{0.0, 3.0, -1.0};
+    const Globules g = movingBlock(v, 3);
+    const SurfaceFrame frame = surfaceGlobules(g, coarse());
+    const fs::path dir = fs::path(testing::TempDir()) /
+                         ("surface_velocity_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    writeSurfaceVdb(dir / "surface.vdb", frame);
+    writeSurfaceMesh(dir / "surface.ply", frame.mesh, "ply");
+    const SurfaceGrids back = readSurfaceVdb(dir / "surface.vdb");
+    const TriangleMesh mesh = readMeshPly(dir / "surface.ply");
+    fs::remove_all(dir);
+
+    EXPECT_EQ(back.surface->getGridClass(), openvdb::GRID_LEVEL_SET);
+    EXPECT_EQ(back.density->getGridClass(), openvdb::GRID_FOG_VOLUME);
+    ASSERT_TRUE(back.vel);
+    EXPECT_EQ(back.vel->getName(), "vel");
+    EXPECT_EQ(back.vel->getVectorType(), openvdb::VEC_CONTRAVARIANT_RELATIVE);
+    EXPECT_EQ(back.vel->activeVoxelCount(), frame.grids->vel->activeVoxelCount());
+    for (auto it = back.vel->cbeginValueOn(); it; ++it) {
+        ASSERT_NEAR((*it)[0], 0.0f, 1e-5f);
+        ASSERT_NEAR((*it)[1], 3.0f, 1e-5f);
+        ASSERT_NEAR((*it)[2], -1.0f, 1e-5f);
+    }
+    ASSERT_EQ(mesh.vertexCount(), frame.mesh.vertexCount());
+    EXPECT_EQ(valuesOf(mesh, "vy"), valuesOf(frame.mesh, "vy"));
+    for (float y : valuesOf(mesh, "vy")) ASSERT_NEAR(y, 3.0f, 1e-5f);
+}
+
+}  // namespace
+}  // namespace globular
