@@ -34,6 +34,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
         for (float t : g.temperature) {
             if (!std::isfinite(t)) std::abort();
         }
+        for (float m : g.mass) {
+            if (!(m > 0) || !std::isfinite(m)) std::abort();
+        }
     } catch (const globular::Error&) {
     }
     return 0;

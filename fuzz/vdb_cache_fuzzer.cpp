@@ -15,7 +15,8 @@
 // `globular run` (some damaged or cut by hand). An IoError is the expected answer to a bad
 // file; anything else (a sanitizer report or a crash in this process, another exception)
 // is a bug. A cache that reads must give arrays of one length (temperature: or none),
-// finite temperatures, mass 1 everywhere, globules ordered by id (as the header promises).
+// finite temperatures, positive finite masses, globules ordered by id (as the header
+// promises).
 
 #include <cmath>
 #include <cstddef>
@@ -61,7 +62,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
             if (!std::isfinite(t)) inconsistent("a non-finite temperature");
         }
         for (std::size_t i = 0; i < n; ++i) {
-            if (g.mass[i] != 1.0f) inconsistent("a mass other than 1");
+            if (!(g.mass[i] > 0) || !std::isfinite(g.mass[i])) {
+                inconsistent("a mass that is not positive and finite");
+            }
             if (i > 0 && g.id[i - 1] > g.id[i]) inconsistent("globules not ordered by id");
         }
         if (verbose()) {

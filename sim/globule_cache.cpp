@@ -96,6 +96,11 @@ double chooseVoxelSize(const fs::path& path, const Globules& g) {
             throw IoError("cannot write " + path.string() + ": globule " +
                           std::to_string(g.id[i]) + " has a non-finite temperature");
         }
+        if (!(g.mass[i] > 0) || !std::isfinite(g.mass[i])) {
+            throw IoError("cannot write " + path.string() + ": globule " +
+                          std::to_string(g.id[i]) + " has mass " + std::to_string(g.mass[i]) +
+                          ", not a positive finite number");
+        }
     }
     double voxelSize = maxRadius > 0 ? 2.0 * maxRadius : 1.0;
     return std::max({voxelSize, kMinVoxelSize, maxAbs / kMaxIndexCoord});
@@ -114,10 +119,12 @@ vdbp::PointDataGrid::Ptr buildGrid(const fs::path& path, const Globules& g, cons
     vdbp::appendAttribute<openvdb::Vec3f>(tree, "v");
     vdbp::appendAttribute<float>(tree, "pscale", 1.0f);
     vdbp::appendAttribute<int32_t>(tree, "id");
+    vdbp::appendAttribute<float>(tree, "mass", 1.0f);
     vdbp::appendAttribute<int32_t>(tree, "material");
     vdbp::populateAttribute(tree, indexTree, "v", VelocityList{g});
     vdbp::populateAttribute(tree, indexTree, "pscale", ArrayList<float>{g.radius});
     vdbp::populateAttribute(tree, indexTree, "id", ArrayList<int32_t>{g.id});
+    vdbp::populateAttribute(tree, indexTree, "mass", ArrayList<float>{g.mass});
     std::vector<int32_t> materials(g.size());
     for (std::size_t i = 0; i < g.size(); ++i) materials[i] = g.materialOf(i);
     vdbp::populateAttribute(tree, indexTree, "material", ArrayList<int32_t>{materials});
@@ -185,6 +192,15 @@ void readLeaf(const Leaf& leaf, const openvdb::math::Transform& xform, std::size
     if (std::size_t i = descriptor.find("id"); i != vdbp::AttributeSet::INVALID_POS) {
         forEachValue<int32_t, int64_t>(
             leaf, i, "id", [&](std::size_t k, auto id) { out.id[start + k] = int32_t(id); });
+    }
+    if (std::size_t i = descriptor.find("mass"); i != vdbp::AttributeSet::INVALID_POS) {
+        forEachValue<float, double>(leaf, i, "mass", [&](std::size_t k, auto m) {
+            // The force loop divides by it.
+            if (!(m > 0) || m > std::numeric_limits<float>::max()) {
+                throw std::runtime_error("a mass is not a positive finite float");
+            }
+            out.mass[start + k] = float(m);
+        });
     }
     if (std::size_t i = descriptor.find("material"); i != vdbp::AttributeSet::INVALID_POS) {
         forEachValue<int32_t, int64_t>(leaf, i, "material", [&](std::size_t k, auto m) {

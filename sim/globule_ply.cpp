@@ -40,7 +40,7 @@ static_assert(std::endian::native == std::endian::little,
 /// Clouds larger than this are refused before they are read.
 constexpr uint64_t kMaxPlyBytes = uint64_t(16) << 30;
 
-enum class Slot { X, Y, Z, Vx, Vy, Vz, Radius, Temperature, Id, Ignored };
+enum class Slot { X, Y, Z, Vx, Vy, Vz, Radius, Temperature, Mass, Id, Ignored };
 
 Slot slotOf(const PlyProperty& p) {
     if (p.isList()) return Slot::Ignored;
@@ -48,7 +48,7 @@ Slot slotOf(const PlyProperty& p) {
         {"x", Slot::X},           {"y", Slot::Y},           {"z", Slot::Z},
         {"vx", Slot::Vx},         {"vy", Slot::Vy},         {"vz", Slot::Vz},
         {"radius", Slot::Radius}, {"pscale", Slot::Radius}, {"id", Slot::Id},
-        {"temperature", Slot::Temperature}};
+        {"temperature", Slot::Temperature}, {"mass", Slot::Mass}};
     for (const auto& [n, s] : kNames) {
         if (n == p.name) return s;
     }
@@ -74,6 +74,10 @@ void checkGlobule(const Globules& g, std::size_t i, int line) {
     if (!g.temperature.empty() && !std::isfinite(g.temperature[i])) {
         throw std::runtime_error(where() + " has a non-finite temperature");
     }
+    if (!(g.mass[i] > 0) || !std::isfinite(g.mass[i])) {
+        throw std::runtime_error(where() + " has mass " + std::to_string(g.mass[i]) +
+                                 ": a mass must be a positive finite number");
+    }
 }
 
 Globules readVertices(const PlyElement& e, PlyCursor& in, float defaultRadius, bool ascii) {
@@ -97,7 +101,8 @@ Globules readVertices(const PlyElement& e, PlyCursor& in, float defaultRadius, b
         g.temperature.assign(n, 0.0f);
     }
     float* const targets[] = {g.px.data(), g.py.data(), g.pz.data(),     g.vx.data(),
-                              g.vy.data(), g.vz.data(), g.radius.data(), g.temperature.data()};
+                              g.vy.data(), g.vz.data(), g.radius.data(), g.temperature.data(),
+                              g.mass.data()};
     for (std::size_t i = 0; i < n; ++i) {
         for (std::size_t k = 0; k < e.properties.size(); ++k) {
             const PlyProperty& p = e.properties[k];
@@ -133,11 +138,13 @@ void writeGlobulePly(const fs::path& path, const Globules& globules) {
         vertex.properties.push_back({name, PlyType::Float32});
     }
     vertex.properties.push_back({"id", PlyType::Int32});
+    vertex.properties.push_back({"mass", PlyType::Float32});
     vertex.properties.push_back({"material", PlyType::Int32});
     const bool hasTemperature = !g.temperature.empty();
     if (hasTemperature) vertex.properties.push_back({"temperature", PlyType::Float32});
     const std::string header = plyHeader("globular globule cache", {vertex});
-    const std::size_t rowSize = 7 * sizeof(float) + 2 * sizeof(int32_t) +
+    // x y z vx vy vz radius | id | mass | material | temperature
+    const std::size_t rowSize = 8 * sizeof(float) + 2 * sizeof(int32_t) +
                                  (hasTemperature ? sizeof(float) : 0);
     constexpr std::size_t kChunk = 1 << 14;  // rows per write
     writeAtomically(path, [&](const fs::path& temporary) {
@@ -153,15 +160,21 @@ void writeGlobulePly(const fs::path& path, const Globules& globules) {
                                       g.vy[i], g.vz[i], g.radius[i]};
                 std::memcpy(p, row, sizeof row);
                 const int32_t material = g.materialOf(i);
-                std::memcpy(p + sizeof row, &g.id[i], sizeof(int32_t));
-                std::memcpy(p + sizeof row + sizeof(int32_t), &material, sizeof(int32_t));
+                if (!(g.mass[i] > 0) || !std::isfinite(g.mass[i])) {
+                    throw std::runtime_error("globule " + std::to_string(g.id[i]) +
+                                             " has mass " + std::to_string(g.mass[i]) +
+                                             ", not a positive finite number");
+                }
+                char* q = p + sizeof row;
+                std::memcpy(q, &g.id[i], sizeof(int32_t));
+                std::memcpy(q += sizeof(int32_t), &g.mass[i], sizeof(float));
+                std::memcpy(q += sizeof(float), &material, sizeof(int32_t));
                 if (hasTemperature) {
                     if (!std::isfinite(g.temperature[i])) {
                         throw std::runtime_error("globule " + std::to_string(g.id[i]) +
                                                  " has a non-finite temperature");
                     }
-                    std::memcpy(p + sizeof row + 2 * sizeof(int32_t), &g.temperature[i],
-                                sizeof(float));
+                    std::memcpy(q + sizeof(int32_t), &g.temperature[i], sizeof(float));
                 }
             }
             out.write(buffer.data(), p - buffer.data());

@@ -40,8 +40,9 @@ Globules randomGlobules(std::size_t n, unsigned seed) {
     std::uniform_real_distribution<float> pos(-20, 20), vel(-5, 5), rad(0.5f, 1.5f);
     Globules g;
     for (std::size_t i = 0; i < n; ++i) {
-        g.add({pos(rng), pos(rng) + 10, pos(rng)}, {vel(rng), vel(rng), vel(rng)}, rad(rng), 1.0f,
-              int32_t(1000 + 7 * i));
+        // Masses other than 1, so that a reader that forgets them fails.
+        g.add({pos(rng), pos(rng) + 10, pos(rng)}, {vel(rng), vel(rng), vel(rng)}, rad(rng),
+              0.5f + 0.25f * float(i % 7), int32_t(1000 + 7 * i));
     }
     return g;
 }
@@ -67,7 +68,7 @@ void expectSameGlobules(const Globules& expected, const Globules& actual, float 
         EXPECT_EQ(actual.vy[k], expected.vy[i]);
         EXPECT_EQ(actual.vz[k], expected.vz[i]);
         EXPECT_EQ(actual.radius[k], expected.radius[i]);
-        EXPECT_EQ(actual.mass[k], 1.0f);
+        EXPECT_EQ(actual.mass[k], expected.mass[i]);
     }
 }
 
@@ -113,7 +114,8 @@ TEST_F(GlobuleCacheTest, MaterialsTravelInTheVdbAndPlyCaches) {
     for (std::size_t i = 0; i < back.size(); ++i) EXPECT_EQ(back.material[i], back.id[i] % 3);
     writeGlobulePly(mDir / "mixed.ply", g);
     const std::string ply = readBytes(mDir / "mixed.ply");
-    EXPECT_NE(ply.find("property int id\nproperty int material\n"), std::string::npos);
+    EXPECT_NE(ply.find("property int id\nproperty float mass\nproperty int material\n"),
+              std::string::npos);
     // One material: every globule's is 0.
     writeGlobuleVdb(mDir / "single.vdb", randomGlobules(50, 6), {1, 0.0});
     const Globules single = readGlobuleVdb(mDir / "single.vdb");
@@ -269,6 +271,51 @@ TEST_F(GlobuleCacheTest, VdbWithAFlippedByteIsCorrupt) {
     }
 }
 
+TEST_F(GlobuleCacheTest, MassIsStoredAsHoudinisMassAttribute) {
+    Globules g = randomGlobules(100, 12);
+    g.mass[17] = 3.75f;
+    writeGlobuleVdb(mDir / "heavy.vdb", g, {1, 0.0});
+    openvdb::initialize();
+    openvdb::io::File file((mDir / "heavy.vdb").string());
+    file.open();
+    auto grid = openvdb::gridPtrCast<openvdb::points::PointDataGrid>(file.readGrid("globules"));
+    file.close();
+    const auto& descriptor = grid->tree().cbeginLeaf()->attributeSet().descriptor();
+    ASSERT_NE(descriptor.find("mass"), openvdb::points::AttributeSet::INVALID_POS);
+    EXPECT_EQ(descriptor.valueType(descriptor.find("mass")), "float");
+    const Globules back = readGlobuleVdb(mDir / "heavy.vdb");
+    EXPECT_EQ(back.mass[indexById(back).at(g.id[17])], 3.75f);
+
+    writeGlobulePly(mDir / "heavy.ply", g);
+    EXPECT_EQ(readGlobulePly(mDir / "heavy.ply").mass, g.mass);
+}
+
+TEST_F(GlobuleCacheTest, MassThatIsNotPositiveIsRefusedNamingTheFile) {
+    for (float bad : {0.0f, -1.0f, NAN, INFINITY}) {
+        Globules g = randomGlobules(5, 13);
+        g.mass[2] = bad;
+        expectIoErrorNaming(mDir / "bad.vdb", [&] { writeGlobuleVdb(mDir / "bad.vdb", g, {}); });
+        EXPECT_FALSE(fs::exists(mDir / "bad.vdb"));
+        expectIoErrorNaming(mDir / "bad.ply", [&] { writeGlobulePly(mDir / "bad.ply", g); });
+        EXPECT_FALSE(fs::exists(mDir / "bad.ply"));
+    }
+    // Read: a PLY cache with a mass of 0, and a VDB cache of another tool with a negative one.
+    writeText(mDir / "zero.ply",
+              "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+              "property float z\nproperty float mass\nend_header\n0 0 0 1\n1 1 1 0\n");
+    expectIoErrorNaming(mDir / "zero.ply", [&] { readGlobulePly(mDir / "zero.ply"); });
+    openvdb::initialize();
+    const std::vector<openvdb::Vec3f> positions = {{1, 2, 3}};
+    auto transform = openvdb::math::Transform::createLinearTransform(0.5);
+    auto grid =
+        openvdb::points::createPointDataGrid<openvdb::points::NullCodec,
+                                             openvdb::points::PointDataGrid>(positions, *transform);
+    openvdb::points::appendAttribute<float>(grid->tree(), "mass", -2.0f);
+    grid->setName("globules");
+    openvdb::io::File((mDir / "negative.vdb").string()).write(openvdb::GridCPtrVec{grid});
+    expectIoErrorNaming(mDir / "negative.vdb", [&] { readGlobuleVdb(mDir / "negative.vdb"); });
+}
+
 TEST_F(GlobuleCacheTest, VdbFromOtherToolsGetsDefaults) {
     // Positions only, written by plain OpenVDB (as a DCC tool might): v 0, radius 1,
     // id = index, frame and time 0.
@@ -306,8 +353,9 @@ TEST_F(GlobuleCacheTest, PlyRoundTripIsExact) {
     const Globules back = readGlobulePly(path);
     expectSameGlobules(g, back, 0.0f);
     EXPECT_EQ(back.id, g.id);  // file order is kept
-    // x y z vx vy vz radius (float), id and material (int32): 36 bytes a row.
-    EXPECT_EQ(fs::file_size(path), readBytes(path).find("end_header\n") + 11 + 1000 * 36);
+    // x y z vx vy vz radius (float), id (int32), mass (float), material (int32): 40 bytes
+    // a row.
+    EXPECT_EQ(fs::file_size(path), readBytes(path).find("end_header\n") + 11 + 1000 * 40);
 
     writeGlobulePly(mDir / "empty.ply", Globules{});
     EXPECT_TRUE(readGlobulePly(mDir / "empty.ply").empty());
