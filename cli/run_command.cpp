@@ -25,7 +25,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::vector<std::string> kStages = {"sim", "surface", "render"};
+// plan: the render plan alone (render makes it too); finish: the contact sheet and movie
+// from the frames on disk (render writes them too once its frames complete the set).
+const std::vector<std::string> kStages = {"sim", "surface", "plan", "render", "finish"};
 
 struct FrameRange {
     int first = 1, last = 1;
@@ -53,10 +55,13 @@ FrameRange parseFrames(const std::string& text, int frames) {
 }
 
 void checkStages(const std::vector<std::string>& stages) {
-    if (stages.empty()) throw SceneError("--stages: name at least one of sim,surface,render");
+    if (stages.empty()) {
+        throw SceneError("--stages: name at least one of sim,surface,plan,render,finish");
+    }
     for (const auto& s : stages) {
         if (std::find(kStages.begin(), kStages.end(), s) == kStages.end()) {
-            throw SceneError("--stages: unknown stage '" + s + "' (stages: sim, surface, render)");
+            throw SceneError("--stages: unknown stage '" + s +
+                             "' (stages: sim, surface, plan, render, finish)");
         }
     }
 }
@@ -114,23 +119,31 @@ void runScene(const RunOptions& options, Reporter& reporter) {
         runSurfaceStage(scene.surface, ctx, scene.colliderScene(), scene.simulation.fps,
                         !scene.otherMaterials.empty());
     }
-    if (wants(options.stages, "render")) {
-        reporter.info("render: frames " + std::to_string(range.first) + "-" +
-                      std::to_string(range.last));
+    const bool plan = wants(options.stages, "plan"), render = wants(options.stages, "render"),
+               finish = wants(options.stages, "finish");
+    if (plan || render || finish) {
         std::vector<Vec3> materialColors;
         const std::vector<MaterialSettings> materials = scene.simulationSetup().materials();
         for (std::size_t k = 0; k < materials.size(); ++k) {
             materialColors.push_back(materialColor(materials[k], k));
         }
-        const RenderJob job{scene.render,
-                            scene.camera,
-                            scene.lights,
-                            scene.ground.enabled ? scene.ground.height : 0,
-                            scene.surface.meshFormat,
-                            scene.simulation.fps,
-                            scene.colliderScene(),
-                            materialColors};
-        runRenderStage(job, ctx);
+        RenderJob job;
+        job.render = scene.render;
+        job.camera = scene.camera;
+        job.lights = scene.lights;
+        job.groundHeight = scene.ground.enabled ? scene.ground.height : 0;
+        job.meshFormat = scene.surface.meshFormat;
+        job.fps = scene.simulation.fps;
+        job.colliders = scene.colliderScene();
+        job.materialColors = materialColors;
+        job.animationFrames = int(scene.simulation.frames);
+        if (plan) ensureRenderPlan(job, ctx);
+        if (render) {
+            reporter.info("render: frames " + std::to_string(range.first) + "-" +
+                          std::to_string(range.last));
+            runRenderStage(job, ctx);
+        }
+        if (finish) finishRenderStage(job, ctx);
     }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

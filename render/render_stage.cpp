@@ -6,6 +6,7 @@
 
 #include "camera.h"
 #include "collider_mesh.h"
+#include "atomic_file.h"
 #include "collider_poses.h"
 #include "contact_sheet.h"
 #include "errors.h"
@@ -16,6 +17,7 @@
 #include "mesh_input.h"
 #include "movie.h"
 #include "render_estimate.h"
+#include "render_plan.h"
 #include "renderer.h"
 #include "surface_estimate.h"
 #include "shaders.h"
@@ -106,9 +108,9 @@ std::vector<Prop> propsAt(const RenderJob& job, const std::vector<ColliderSolid>
 /// Reads every frame once: what the whole animation occupies, the set's solids on every
 /// frame included (but planes, which have no edge to frame).
 SceneExtent animationExtent(const RenderJob& job, const std::vector<ColliderSolid>& solids,
-                            const StageContext& ctx) {
+                            const StageContext& ctx, int firstFrame, int lastFrame) {
     SceneExtent extent;
-    for (int f = ctx.firstFrame; f <= ctx.lastFrame; ++f) {
+    for (int f = firstFrame; f <= lastFrame; ++f) {
         const std::vector<Prop> props = propsAt(job, solids, ctx, f);
         for (std::size_t k = 0; k < props.size(); ++k) {
             if (solids[k].shape() == ColliderShape::Plane) continue;
@@ -124,42 +126,84 @@ SceneExtent animationExtent(const RenderJob& job, const std::vector<ColliderSoli
     return extent;
 }
 
-FrameSetup frameSetup(const RenderJob& job, const SceneExtent& extent) {
+/// What the whole animation shares, measured from all its frames.
+RenderPlan measurePlan(const RenderJob& job, const std::vector<ColliderSolid>& solids,
+                       const StageContext& ctx, int firstFrame, int lastFrame) {
+    const SceneExtent extent = animationExtent(job, solids, ctx, firstFrame, lastFrame);
+    RenderPlan plan;
+    plan.firstFrame = firstFrame;
+    plan.lastFrame = lastFrame;
+    plan.mode = job.render.mode;
+    plan.colorBy = job.render.colorBy;
+    plan.width = int(job.render.width);
+    plan.height = int(job.render.height);
+    plan.automaticCamera = job.camera.automatic();
+    const double aspect = double(job.render.width) / double(job.render.height);
+    if (plan.automaticCamera) {
+        plan.camera = autoFrame(extent, job.groundHeight, job.camera.fov, aspect);
+    } else {
+        plan.camera = {job.camera.position, job.camera.target, job.camera.fov};
+    }
+    plan.content = extent.box;
+    if (job.render.rampMax > job.render.rampMin) {
+        plan.ramp.add(job.render.rampMin, job.render.rampMax);
+    } else {
+        plan.ramp = job.render.colorBy == "speed" ? extent.speed : extent.height;
+        if (plan.ramp.empty) plan.ramp.add(0, 1);  // nothing to colour: any range will do
+    }
+    if (job.render.contactSheet > 0) {
+        plan.sheetFrames = evenlySpacedFrames(firstFrame, lastFrame, int(job.render.contactSheet));
+    }
+    return plan;
+}
+
+FrameSetup frameSetup(const RenderJob& job, const RenderPlan& plan) {
     FrameSetup setup;
     setup.render = job.render;
     setup.lights = job.lights.empty() ? std::vector<LightSettings>{LightSettings{}} : job.lights;
     setup.groundHeight = job.groundHeight;
     setup.materialColors = job.materialColors;
     setup.frameSeconds = job.fps > 0 ? 1.0 / job.fps : 0;
-    const double aspect = double(job.render.width) / double(job.render.height);
-    if (job.camera.automatic()) {
-        setup.camera = autoFrame(extent, job.groundHeight, job.camera.fov, aspect);
-    } else {
-        setup.camera = {job.camera.position, job.camera.target, job.camera.fov};
-    }
-    setup.content = extent.box;
-    if (job.render.rampMax > job.render.rampMin) {
-        setup.ramp.add(job.render.rampMin, job.render.rampMax);
-    } else {
-        setup.ramp = job.render.colorBy == "speed" ? extent.speed : extent.height;
-        if (setup.ramp.empty) setup.ramp.add(0, 1);  // nothing to colour: any range will do
-    }
+    setup.camera = plan.camera;
+    setup.content = plan.content;
+    setup.ramp = plan.ramp;
     return setup;
 }
 
-void writeSheet(const RenderJob& job, const StageContext& ctx) {
-    const int count = int(job.render.contactSheet);
-    const std::vector<int> frames = evenlySpacedFrames(ctx.firstFrame, ctx.lastFrame, count);
+/// The frames of the animation whose PNG is missing or older than the plan (so drawn
+/// with another one, or none), for the contact sheet and movie.
+std::vector<int> framesNotDrawnWith(const std::vector<int>& frames, const fs::path& outDir) {
+    std::error_code error;
+    const auto planTime = fs::last_write_time(renderPlanPath(outDir), error);
+    std::vector<int> missing;
+    for (int f : frames) {
+        const auto time = fs::last_write_time(framePngPath(outDir, f), error);
+        if (error || time < planTime) missing.push_back(f);
+    }
+    return missing;
+}
+
+std::string frameList(const std::vector<int>& frames) {
+    std::string text;
+    for (std::size_t i = 0; i < frames.size() && i < 10; ++i) {
+        text += (i ? ", " : "") + std::to_string(frames[i]);
+    }
+    if (frames.size() > 10) text += " and " + std::to_string(frames.size() - 10) + " more";
+    return text;
+}
+
+void writeSheet(const RenderJob& job, const RenderPlan& plan, const StageContext& ctx) {
     std::vector<fs::path> pngs;
-    for (int f : frames) pngs.push_back(framePngPath(ctx.outDir, f));
-    const int columns = job.render.contactColumns > 0 ? int(job.render.contactColumns)
-                                                      : automaticColumns(int(frames.size()));
+    for (int f : plan.sheetFrames) pngs.push_back(framePngPath(ctx.outDir, f));
+    const int columns = job.render.contactColumns > 0
+                            ? int(job.render.contactColumns)
+                            : automaticColumns(int(plan.sheetFrames.size()));
     writeContactSheet(pngs, columns, int(job.render.contactTileWidth),
                       ctx.outDir / "contact_sheet.png");
     ctx.report().info("render: wrote " + (ctx.outDir / "contact_sheet.png").string());
 }
 
-void writeMovie(const RenderJob& job, const StageContext& ctx) {
+void writeMovie(const RenderJob& job, const RenderPlan& plan, const StageContext& ctx) {
     const fs::path ffmpeg = findOnPath("ffmpeg");
     if (ffmpeg.empty()) {
         ctx.report().warn(
@@ -168,8 +212,78 @@ void writeMovie(const RenderJob& job, const StageContext& ctx) {
         return;
     }
     const double fps = job.render.movieFps > 0 ? job.render.movieFps : job.fps;
-    assembleMovie(ffmpeg, ctx.outDir, ctx.firstFrame, ctx.lastFrame, fps);
+    assembleMovie(ffmpeg, ctx.outDir, plan.firstFrame, plan.lastFrame, fps);
     ctx.report().info("render: wrote " + (ctx.outDir / "movie.mp4").string());
+}
+
+std::vector<int> moviePlusSheetFrames(const RenderJob& job, const RenderPlan& plan) {
+    std::vector<int> frames;
+    if (job.render.movie) {
+        for (int f = plan.firstFrame; f <= plan.lastFrame; ++f) frames.push_back(f);
+    } else {
+        frames = plan.sheetFrames;
+    }
+    return frames;
+}
+
+/// The contact sheet and movie, when every frame they take was drawn with @p plan.
+/// @return the frames still missing (nothing written then).
+std::vector<int> finish(const RenderJob& job, const RenderPlan& plan, const StageContext& ctx) {
+    if (plan.sheetFrames.empty() && !job.render.movie) return {};
+    const std::vector<int> missing = framesNotDrawnWith(moviePlusSheetFrames(job, plan), ctx.outDir);
+    if (!missing.empty()) return missing;
+    if (!plan.sheetFrames.empty()) writeSheet(job, plan, ctx);
+    if (job.render.movie) writeMovie(job, plan, ctx);
+    return {};
+}
+
+/// The animation the plan spans: 1..job.animationFrames, or the requested range.
+std::pair<int, int> animationRange(const RenderJob& job, const StageContext& ctx) {
+    if (job.animationFrames <= 0) return {ctx.firstFrame, ctx.lastFrame};
+    if (ctx.lastFrame > job.animationFrames) {
+        throw SceneError("render stage: frame range " + std::to_string(ctx.firstFrame) + "-" +
+                         std::to_string(ctx.lastFrame) + " goes past the animation's " +
+                         std::to_string(job.animationFrames) + " frames");
+    }
+    return {1, job.animationFrames};
+}
+
+RenderPlan ensurePlan(const RenderJob& job, const std::vector<ColliderSolid>& solids,
+                      const StageContext& ctx) {
+    const auto [first, last] = animationRange(job, ctx);
+    const fs::path path = renderPlanPath(ctx.outDir);
+    const std::string print = renderPlanFingerprint(job, ctx.outDir, first, last);
+    std::optional<RenderPlan> old;
+    if (fs::exists(path)) {
+        try {
+            old = readRenderPlan(path);
+            if (old->fingerprint == print && old->firstFrame == first && old->lastFrame == last) {
+                ctx.report().info("render: using " + path.string());
+                return *old;
+            }
+            ctx.report().info("render: " + path.string() +
+                              " was measured from other settings or caches; measuring again");
+        } catch (const IoError& e) {
+            ctx.report().warn(std::string(e.what()) + "; measuring again");
+        }
+    }
+    ctx.report().info("render: measuring frames " + std::to_string(first) + "-" +
+                      std::to_string(last) + " for the render plan");
+    RenderPlan plan = measurePlan(job, solids, ctx, first, last);
+    plan.fingerprint = print;
+    const std::string text = renderPlanToml(plan);
+    std::error_code error;
+    const auto oldTime = fs::last_write_time(path, error);
+    writeFileAtomically(path, text);
+    ctx.report().info("render: wrote " + path.string());
+    if (old && !error) {
+        // Inputs rewritten with the same content (a requeued surface task) measure the
+        // same plan: frames drawn with the old one stay current for the contact sheet.
+        old->fingerprint = print;
+        if (renderPlanToml(*old) == text) fs::last_write_time(path, oldTime, error);
+    }
+    // Draw with the values as read back, exactly what a later split will read.
+    return parseRenderPlan(text, path.string());
 }
 
 }  // namespace
@@ -180,9 +294,9 @@ void runRenderStage(const RenderJob& job, const StageContext& ctx) {
     const uint64_t available = availableMemoryBytes();
     checkRenderMemory(job.render, 0, available, "the image");
     const long total = ctx.lastFrame - ctx.firstFrame + 1;
-    ctx.report().info("render: measuring " + std::to_string(total) + " frame(s) for framing");
     const std::vector<ColliderSolid> solids = job.colliders.solids();
-    const FrameSetup setup = frameSetup(job, animationExtent(job, solids, ctx));
+    const RenderPlan plan = ensurePlan(job, solids, ctx);
+    const FrameSetup setup = frameSetup(job, plan);
     selectGlBackend(chooseGlBackend(job.render.gl));
     Renderer renderer(int(job.render.width), int(job.render.height), int(job.render.samples),
                       int(job.render.shadowMapSize), job.render.exr);
@@ -218,8 +332,31 @@ void runRenderStage(const RenderJob& job, const StageContext& ctx) {
         if (job.render.exr) writeExr(frameExrPath(png), renderer.lastFrame());
         ctx.report().progress("render", f - ctx.firstFrame + 1, total);
     }
-    if (job.render.contactSheet > 0) writeSheet(job, ctx);
-    if (job.render.movie) writeMovie(job, ctx);
+    const std::vector<int> missing = finish(job, plan, ctx);
+    if (!missing.empty()) {
+        ctx.report().info("render: contact sheet and movie wait for frame(s) " +
+                          frameList(missing) + " (the render that draws the last of them "
+                          "writes them, or --stages finish)");
+    }
 }
+
+RenderPlan ensureRenderPlan(const RenderJob& job, const StageContext& ctx) {
+    validate(job, ctx);
+    ctx.sweepTemporaries("render");
+    return ensurePlan(job, job.colliders.solids(), ctx);
+}
+
+void finishRenderStage(const RenderJob& job, const StageContext& ctx) {
+    validate(job, ctx);
+    const RenderPlan plan = ensurePlan(job, job.colliders.solids(), ctx);
+    const std::vector<int> missing = finish(job, plan, ctx);
+    if (!missing.empty()) {
+        throw IoError("contact sheet and movie: frame(s) " + frameList(missing) + " of " +
+                      ctx.outDir.string() + " are missing or older than " +
+                      renderPlanPath(ctx.outDir).string() +
+                      ": render them first (globular run SCENE --stages render --frames A-B)");
+    }
+}
+
 
 }  // namespace globular

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "collider_solid.h"
+#include "render_plan.h"
 #include "render_settings.h"
 #include "stage_context.h"
 
@@ -20,19 +21,33 @@ struct RenderJob {
     double fps = 25;                    ///< [simulation] fps: the movie's rate by default
     ColliderScene colliders;  ///< [[collider]]: drawn at each frame's pose (collider_poses.h)
     std::vector<Vec3> materialColors;  ///< sRGB by material index, for color_by = material
+    /// [simulation] frames: the animation 1..N that the render plan measures, whatever
+    /// range is drawn. 0: the requested range is the whole animation.
+    int animationFrames = 0;
 };
 
 /// Renders frames ctx.firstFrame..ctx.lastFrame of ctx.outDir:
+///  - takes what spans the animation (the automatic camera, the shadow map's and ground's
+///    extent, the colour ramp's range, the contact sheet's frames) from the render plan
+///    DIR/render_plan.toml (render_plan.h), measuring it first from every frame of the
+///    whole animation when it is missing or stale, so any split draws one run's pixels;
 ///  - reads cache/globules.NNNN.vdb (mode spheres) or mesh/surface.NNNN.<meshFormat>
-///    (mode surface) of every frame once first, for the automatic camera (when the
-///    camera is not given), the shadow map's and ground's extent, and the colour ramp's
-///    range, so all of them hold still over the animation;
-///  - writes frames/frame.NNNN.png (8 or 16 bits, render.pngBits) and, with render.exr,
-///    frames/frame.NNNN.exr (exr_image.h), reporting progress("render", done, total);
-///  - contact_sheet.png of render.contactSheet evenly spaced frames when asked;
-///  - movie.mp4 when render.movie and ffmpeg is on PATH (a warning otherwise).
+///    (mode surface) and writes frames/frame.NNNN.png (8 or 16 bits, render.pngBits) and,
+///    with render.exr, frames/frame.NNNN.exr (exr_image.h), reporting
+///    progress("render", done, total);
+///  - then, once every frame they take is drawn with the plan (this range or earlier
+///    ones), contact_sheet.png and movie.mp4 (when render.movie and ffmpeg is on PATH, a
+///    warning otherwise).
 /// @throw SceneError for invalid settings (naming the key), IoError naming a missing or
 ///        unreadable input and the stage to run first, Error when OpenGL is unavailable.
 void runRenderStage(const RenderJob& job, const StageContext& ctx);
+
+/// The plan step alone: DIR/render_plan.toml measured when missing or stale, else kept.
+/// @return the plan. @throw as runRenderStage.
+RenderPlan ensureRenderPlan(const RenderJob& job, const StageContext& ctx);
+
+/// contact_sheet.png and movie.mp4 from the frames on disk (a farm's last job).
+/// @throw IoError naming the frames that are missing or older than the plan.
+void finishRenderStage(const RenderJob& job, const StageContext& ctx);
 
 }  // namespace globular

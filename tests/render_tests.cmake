@@ -21,3 +21,7 @@ globular_test(renderer_tests
 globular_test(render_stage_tests
     SOURCES render_stage_test.cpp
     LIBS globular_render)
+# Issue 17: a split render draws one run's pixels (the render plan).
+globular_test(render_plan_tests
+    SOURCES render_plan_test.cpp
+    LIBS globular_render)
