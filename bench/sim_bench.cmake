@@ -10,6 +10,10 @@ target_link_libraries(make_workload PRIVATE globular_sim)
 add_executable(sim_steps sim_steps.cpp)
 target_link_libraries(sim_steps PRIVATE globular_sim)
 
+# docs/scale.md: the halo of a domain decomposition of a cached frame.
+add_executable(halo_fraction halo_fraction.cpp)
+target_link_libraries(halo_fraction PRIVATE globular_sim)
+
 # Mesh colliders: MeshSdf::sample per globule over the bowl of scenes/effectors.
 add_executable(mesh_collider_bench mesh_collider_bench.cpp)
 target_link_libraries(mesh_collider_bench PRIVATE globular_sim benchmark::benchmark)

@@ -6,6 +6,7 @@
 #include <tbb/global_control.h>
 
 #include "bench_workload.h"
+#include "simd_path.h"
 #include "simulation.h"
 
 using namespace globular;
@@ -13,10 +14,12 @@ using globular::bench::liquidBlock;
 
 namespace {
 
-void runSteps(benchmark::State& state, const SimulationSetup& setup) {
+void runSteps(benchmark::State& state, const SimulationSetup& setup,
+              SimdPath path = activeSimdPath()) {
     tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
                                 std::size_t(state.range(1)));
     Simulation sim(setup);
+    sim.setSimdPath(path);
     sim.step(0.001);  // first step pays for allocations
     for (auto _ : state) sim.step(0.001);
     state.counters["globule_steps_per_s"] = benchmark::Counter(
@@ -25,6 +28,18 @@ void runSteps(benchmark::State& state, const SimulationSetup& setup) {
 }
 
 void BM_SimulationStep(benchmark::State& state) { runSteps(state, liquidBlock(state.range(0))); }
+
+/// The plain step on each build of the force loops (simd_path.h), side by side in one
+/// run: path 0 scalar, 1 AVX2, 2 AVX-512 (GLOBULAR_SIMD plays no part here).
+void BM_SimulationStepSimdPath(benchmark::State& state) {
+    const SimdPath path = SimdPath(state.range(2));
+    if (!simdPathSupported(path)) {
+        state.SkipWithError((std::string("this CPU lacks ") + simdPathName(path)).c_str());
+        return;
+    }
+    state.SetLabel(simdPathName(path));
+    runSteps(state, liquidBlock(state.range(0)), path);
+}
 
 /// The same block standing in a bowl (scenes/effectors/bowl.obj scaled by 60: a shell 1
 /// thick, 139 across, its pole 30 below the ground): the cost of a mesh collider, whose
@@ -122,6 +137,12 @@ void BM_SimulationStepAllPairs(benchmark::State& state) {
 BENCHMARK(BM_SimulationStep)
     ->ArgsProduct({{1000, 10000, 100000, 1000000}, {1, 2}})
     ->ArgNames({"globules", "threads"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+BENCHMARK(BM_SimulationStepSimdPath)
+    ->ArgsProduct({{100000, 1000000}, {1, 2}, {0, 1, 2}})
+    ->ArgNames({"globules", "threads", "path"})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);
