@@ -123,9 +123,11 @@ void runScene(const RunOptions& options, Reporter& reporter) {
                finish = wants(options.stages, "finish");
     if (plan || render || finish) {
         std::vector<Vec3> materialColors;
+        std::vector<SurfaceLook> materialLooks;
         const std::vector<MaterialSettings> materials = scene.simulationSetup().materials();
         for (std::size_t k = 0; k < materials.size(); ++k) {
             materialColors.push_back(materialColor(materials[k], k));
+            materialLooks.push_back(surfaceLook(materials[k]));
         }
         RenderJob job;
         job.render = scene.render;
@@ -136,6 +138,13 @@ void runScene(const RunOptions& options, Reporter& reporter) {
         job.fps = scene.simulation.fps;
         job.colliders = scene.colliderScene();
         job.materialColors = materialColors;
+        job.materialLooks = materialLooks;
+        // Like the scene's other files, the environment is found beside the scene.
+        if (!job.render.environment.empty() &&
+            std::filesystem::path(job.render.environment).is_relative()) {
+            job.render.environment =
+                (scene.directory() / job.render.environment).lexically_normal().string();
+        }
         job.animationFrames = int(scene.simulation.frames);
         if (plan) ensureRenderPlan(job, ctx);
         if (render) {

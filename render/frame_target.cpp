@@ -27,9 +27,10 @@ FrameTarget::FrameTarget(int width, int height, int samples, bool passes)
       mPasses(passes),
       mDraw(gl::makeFramebuffer()),
       mResolved(gl::makeFramebuffer()),
+      mColorOnly(gl::makeFramebuffer()),
       mColor(gl::makeRenderbuffer()),
-      mDepth(gl::makeRenderbuffer()),
       mResolvedColor(gl::makeRenderbuffer()),
+      mDepth(gl::makeTexture()),
       mIds(gl::makeTexture()),
       mNormal(gl::makeRenderbuffer()),
       mDistance(gl::makeRenderbuffer()),
@@ -41,10 +42,17 @@ FrameTarget::FrameTarget(int width, int height, int samples, bool passes)
     glBindRenderbuffer(GL_RENDERBUFFER, mColor.id());
     glRenderbufferStorageMultisample(GL_RENDERBUFFER, multi ? samples : 0, GL_RGBA16F, width,
                                      height);
-    glBindRenderbuffer(GL_RENDERBUFFER, mDepth.id());
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, multi ? samples : 0, GL_DEPTH24_STENCIL8,
-                                     width, height);
     const GLenum idTarget = multi ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+    // Depth a texture, so the ambient occlusion pass can read it.
+    glBindTexture(idTarget, mDepth.id());
+    if (multi) {
+        glTexImage2DMultisample(idTarget, samples, GL_DEPTH24_STENCIL8, width, height, GL_TRUE);
+    } else {
+        glTexImage2D(idTarget, 0, GL_DEPTH24_STENCIL8, width, height, 0, GL_DEPTH_STENCIL,
+                     GL_UNSIGNED_INT_24_8, nullptr);
+        glTexParameteri(idTarget, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(idTarget, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
     glBindTexture(idTarget, mIds.id());
     if (multi) {
         glTexImage2DMultisample(idTarget, samples, GL_R32UI, width, height, GL_TRUE);
@@ -59,8 +67,7 @@ FrameTarget::FrameTarget(int width, int height, int samples, bool passes)
     glBindFramebuffer(GL_FRAMEBUFFER, mDraw.id());
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, mColor.id());
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, idTarget, mIds.id(), 0);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
-                              mDepth.id());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, idTarget, mDepth.id(), 0);
     if (passes) {
         glBindRenderbuffer(GL_RENDERBUFFER, mNormal.id());
         glRenderbufferStorageMultisample(GL_RENDERBUFFER, multi ? samples : 0, GL_RGBA16F, width,
@@ -79,6 +86,9 @@ FrameTarget::FrameTarget(int width, int height, int samples, bool passes)
                                   mMotion.id());
     }
     checkComplete("frame buffer", width, height, samples);
+    glBindFramebuffer(GL_FRAMEBUFFER, mColorOnly.id());
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, mColor.id());
+    checkComplete("colour-only frame buffer", width, height, samples);
 
     glBindRenderbuffer(GL_RENDERBUFFER, mResolvedColor.id());
     glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA16F, width, height);
@@ -132,6 +142,19 @@ void FrameTarget::drawColor() const {
                               GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
     glDrawBuffers(mPasses ? 5 : 2, buffers);
     glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+void FrameTarget::bindColorOnly() const {
+    glBindFramebuffer(GL_FRAMEBUFFER, mColorOnly.id());
+    glViewport(0, 0, mWidth, mHeight);
+    const GLenum buffer = GL_COLOR_ATTACHMENT0;
+    glDrawBuffers(1, &buffer);
+}
+
+void FrameTarget::bind() const {
+    glBindFramebuffer(GL_FRAMEBUFFER, mDraw.id());
+    glViewport(0, 0, mWidth, mHeight);
+    drawColor();
 }
 
 void FrameTarget::drawIds() const {

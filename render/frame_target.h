@@ -1,6 +1,6 @@
 #pragma once
 // Internal to render/: where a frame is drawn. Linear-light colour in half floats
-// (multisampled when asked), depth and stencil, and an id buffer that the sphere pass
+// (multisampled when asked), depth and stencil (a texture), and an id buffer that the sphere pass
 // fills with the index of the globule seen at each sample; resolved and read back as
 // floats. The stencil marks the samples a sphere covers, so the full-screen shading pass
 // runs only there. With passes, two more buffers hold what a compositor uses, each
@@ -31,6 +31,13 @@ class FrameTarget {
     void drawIds() const;
     /// The id buffer's texture (GL_TEXTURE_2D_MULTISAMPLE when samples > 1).
     GLuint idTexture() const { return mIds.id(); }
+    /// The depth (and stencil) texture, of the same kind.
+    GLuint depthTexture() const { return mDepth.id(); }
+    /// Binds a framebuffer of the colour alone (no depth, so the depth texture can be
+    /// read while drawing into the colour); bind() returns to the full target.
+    void bindColorOnly() const;
+    /// Binds the target again (without clearing), drawing colour.
+    void bind() const;
 
     /// Averages the samples and reads the image into @p frame (rows top first), with the
     /// passes when the target has them (motion too when @p motion).
@@ -47,9 +54,9 @@ class FrameTarget {
 
     int mWidth, mHeight, mSamples;
     bool mPasses;
-    gl::Framebuffer mDraw, mResolved;
-    gl::Renderbuffer mColor, mDepth, mResolvedColor;
-    gl::Texture mIds;
+    gl::Framebuffer mDraw, mResolved, mColorOnly;
+    gl::Renderbuffer mColor, mResolvedColor;
+    gl::Texture mDepth, mIds;
     // Passes only: normal, distance and motion, and their resolves.
     gl::Renderbuffer mNormal, mDistance, mMotion, mResolvedNormal, mResolvedDistance,
         mResolvedMotion;

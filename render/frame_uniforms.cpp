@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "color_ramp.h"
+#include "environment_light.h"
 #include "shaders.h"
 
 namespace globular::detail {
@@ -40,8 +41,14 @@ void applyFrameUniforms(const gl::Program& p, const FrameUniforms& f) {
     glUniform1i(p.uniform("uLightCount"), lights);
     setVec3Array(p, "uLightToward", {f.lightToward.begin(), f.lightToward.begin() + lights});
     setVec3Array(p, "uLightRadiance", {f.lightRadiance.begin(), f.lightRadiance.begin() + lights});
-    glUniform1f(p.uniform("uAmbient"), f.ambient);
     glUniform1f(p.uniform("uSpecular"), f.specular);
+    glUniform1fv(p.uniform("uMaterialRoughness"), 16, f.roughness.data());
+    glUniform1fv(p.uniform("uMaterialMetallic"), 16, f.metallic.data());
+    setVec3Array(p, "uIrradianceSH", {f.irradianceSH.begin(), f.irradianceSH.end()});
+    glUniform1i(p.uniform("uEnvironmentMap"), kEnvironmentUnit);
+    glUniform1f(p.uniform("uEnvironmentMaxLod"), f.environmentMaxLod);
+    glUniform1f(p.uniform("uEnvironmentIntensity"), f.environmentIntensity);
+    glUniform1f(p.uniform("uShadowSoftness"), f.shadowSoftness);
     glUniform1i(p.uniform("uShadowed"), f.shadowed ? 1 : 0);
     glUniform1i(p.uniform("uShadowMap"), 0);
     setMat4(p, "uLightViewProj", f.lightViewProj);

@@ -22,8 +22,13 @@ struct FrameUniforms {
     float focalPixels[2] = {0, 0};    ///< pixels per unit of x/depth and of y/depth
     std::vector<Vec3> lightToward;    ///< unit, towards each light
     std::vector<Vec3> lightRadiance;  ///< linear colour times intensity
-    float ambient = 0;
-    float specular = 0;
+    float specular = 0;        ///< dielectrics' reflectance (f0 = 0.16 specular^2)
+    std::array<float, 16> roughness{};  ///< perceptual, by material index
+    std::array<float, 16> metallic{};   ///< by material index
+    std::array<Vec3, 9> irradianceSH{};  ///< the environment's irradiance (environment.h)
+    float environmentMaxLod = 0;         ///< the pre-filtered cube's roughest level
+    float environmentIntensity = 0;
+    float shadowSoftness = 0;            ///< penumbra radius, shadow texels
     bool shadowed = false;
     Mat4 lightViewProj;
     Vec3 lightRight, lightUp;  ///< the key light's image plane, world unit vectors
@@ -38,7 +43,8 @@ struct FrameUniforms {
     float frameSeconds = 0;    ///< the motion pass's interval (1/fps); 0: no motion pass
 };
 
-/// Sets the shared uniforms of @p program (which must be in use); shadow map on unit 0.
+/// Sets the shared uniforms of @p program (which must be in use); shadow map on unit 0,
+/// the environment's cube map on kEnvironmentUnit (environment_light.h).
 void applyFrameUniforms(const gl::Program& program, const FrameUniforms& frame);
 
 void setVec3(const gl::Program& program, const char* name, Vec3 value);

@@ -15,6 +15,7 @@ MeshPass::MeshPass()
       mPositions(gl::makeBuffer()),
       mNormals(gl::makeBuffer()),
       mValues(gl::makeBuffer()),
+      mMaterials(gl::makeBuffer()),
       mIndices(gl::makeBuffer()) {}
 
 void MeshPass::upload(const MeshView& mesh) {
@@ -51,6 +52,16 @@ void MeshPass::upload(const MeshView& mesh) {
     } else {
         glDisableVertexAttribArray(2);
         glVertexAttrib1f(2, 0);
+    }
+    if (mesh.materials) {
+        glBindBuffer(GL_ARRAY_BUFFER, mMaterials.id());
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.vertexCount * sizeof(float)),
+                     mesh.materials, GL_STREAM_DRAW);
+        glVertexAttribPointer(3, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
+        glEnableVertexAttribArray(3);
+    } else {
+        glDisableVertexAttribArray(3);
+        glVertexAttrib1f(3, 0);
     }
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mIndices.id());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indexCount * sizeof(uint32_t)), mesh.triangles,

@@ -24,7 +24,7 @@ class MeshPass {
     gl::Program mProgram;
     gl::Program mShadowProgram;
     gl::VertexArray mVertexArray;
-    gl::Buffer mPositions, mNormals, mValues, mIndices;
+    gl::Buffer mPositions, mNormals, mValues, mMaterials, mIndices;
     std::size_t mIndexCount = 0;
 };
 

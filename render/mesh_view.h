@@ -21,6 +21,9 @@ struct MeshView {
     /// One value per vertex that color_by = material or temperature colours by (a
     /// TriangleMesh attribute), or null: 0 everywhere.
     const float* values = nullptr;
+    /// Each vertex's material index (the mesh's "material" attribute, scenes of several
+    /// materials), for its roughness and metallic; null: material 0 everywhere.
+    const float* materials = nullptr;
 };
 
 }  // namespace globular

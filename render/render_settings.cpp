@@ -95,8 +95,24 @@ void RenderSettings::describe(SettingsSection& s) {
     s.number("temperature_high", temperatureHigh, NumberRange::any(),
              "temperature at the white end of the blackbody ramp; must be above "
              "temperature_low");
-    s.number("specular", specular, kUnit, "strength of the key light's highlight, 0 = matte");
-    s.number("ambient", ambient, kUnit, "sky light as a fraction of the base colour");
+    s.number("specular", specular, kUnit,
+             "reflectance of dielectric materials (Filament's): f0 = 0.16 specular^2, 0.5 = 4% "
+             "(water, plastic), 0 = no specular reflection at all");
+    s.text("environment", environment,
+           "the light all around: a lat-long (equirectangular) HDR OpenEXR file, +y up, its "
+           "middle looking along -z (relative to the working directory); \"\": the procedural "
+           "sky, its sun glow towards the key light");
+    s.number("environment_intensity", environmentIntensity, NumberRange::nonNegative(),
+             "multiplies the environment's radiance (image-based diffuse and specular light); "
+             "0 = lit by the [[light]]s alone");
+    s.number("shadow_softness", shadowSoftness, {0, 16},
+             "penumbra radius of the key light's shadow, shadow-map texels (about pixels), "
+             "percentage-closer filtered; 0 = hard");
+    s.number("ambient_occlusion", ambientOcclusion, kUnit,
+             "strength of screen-space ambient occlusion (darkens creases and contacts); 0 = off");
+    s.number("occlusion_radius", occlusionRadius, NumberRange::nonNegative(),
+             "reach of the ambient occlusion, world units; 0 = a 30th of the size of what the "
+             "animation occupies");
     s.flag("ground", ground, "draw the ground plane (at [ground] height)");
     s.vec3("ground_color", groundColor, kUnit, "ground colour, sRGB in [0, 1]");
     s.number("checker_size", checkerSize, NumberRange::nonNegative(),

@@ -24,8 +24,12 @@ struct RenderSettings {
     double rampMax = 0;                  ///< ... and end; rampMin == rampMax: the animation's range
     double temperatureLow = 0;           ///< temperature at the blackbody ramp's black end
     double temperatureHigh = 100;        ///< ... and at its white end (> temperatureLow)
-    double specular = 0.35;              ///< strength of the key light's highlight, 0 = matte
-    double ambient = 0.30;               ///< sky light, as a fraction of the base colour
+    double specular = 0.5;               ///< dielectrics' reflectance: f0 = 0.16 specular^2
+    std::string environment;             ///< lat-long OpenEXR of the light all around; "": the sky
+    double environmentIntensity = 1.0;   ///< multiplies the environment's radiance, 0 = none
+    double shadowSoftness = 2.0;         ///< penumbra radius of the key light's shadow, texels
+    double ambientOcclusion = 0.8;       ///< strength of screen-space ambient occlusion, 0 = off
+    double occlusionRadius = 0;          ///< its reach, world units; 0 = the content's size / 30
     bool ground = true;                  ///< draw the ground plane
     Vec3 groundColor{0.72, 0.70, 0.66};  ///< sRGB
     double checkerSize = 0;              ///< ground checker edge, world units; 0 = automatic

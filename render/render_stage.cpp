@@ -53,6 +53,7 @@ TriangleMesh readMesh(const RenderJob& job, const fs::path& outDir, int frame) {
 MeshView viewOf(const TriangleMesh& m, const std::string& colorBy) {
     const VertexAttribute* values =
         colorBy == "material" || colorBy == "temperature" ? m.attribute(colorBy) : nullptr;
+    const VertexAttribute* materials = m.attribute("material");  // roughness and metallic
     // The surface stage's meshes are closed level sets wound outward (core/mesh.h).
     return {m.positions.data(),
             m.normals.size() == m.positions.size() ? m.normals.data() : nullptr,
@@ -60,7 +61,9 @@ MeshView viewOf(const TriangleMesh& m, const std::string& colorBy) {
             m.triangles.data(),
             m.triangleCount(),
             true,
-            values && values->values.size() == m.vertexCount() ? values->values.data() : nullptr};
+            values && values->values.size() == m.vertexCount() ? values->values.data() : nullptr,
+            materials && materials->values.size() == m.vertexCount() ? materials->values.data()
+                                                                     : nullptr};
 }
 
 /// color_by = temperature needs temperatures: a scene without [thermal] has none.
@@ -163,6 +166,7 @@ FrameSetup frameSetup(const RenderJob& job, const RenderPlan& plan) {
     setup.lights = job.lights.empty() ? std::vector<LightSettings>{LightSettings{}} : job.lights;
     setup.groundHeight = job.groundHeight;
     setup.materialColors = job.materialColors;
+    setup.materialLooks = job.materialLooks;
     setup.frameSeconds = job.fps > 0 ? 1.0 / job.fps : 0;
     setup.camera = plan.camera;
     setup.content = plan.content;

@@ -9,6 +9,7 @@
 #include "render_plan.h"
 #include "render_settings.h"
 #include "stage_context.h"
+#include "surface_look.h"
 
 namespace globular {
 
@@ -21,6 +22,7 @@ struct RenderJob {
     double fps = 25;                    ///< [simulation] fps: the movie's rate by default
     ColliderScene colliders;  ///< [[collider]]: drawn at each frame's pose (collider_poses.h)
     std::vector<Vec3> materialColors;  ///< sRGB by material index, for color_by = material
+    std::vector<SurfaceLook> materialLooks;  ///< roughness and metallic by material index
     /// [simulation] frames: the animation 1..N that the render plan measures, whatever
     /// range is drawn. 0: the requested range is the whole animation.
     int animationFrames = 0;

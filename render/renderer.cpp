@@ -7,12 +7,14 @@
 #include <optional>
 
 #include "color_ramp.h"
+#include "environment_light.h"
 #include "errors.h"
 #include "frame_target.h"
 #include "gl_context.h"
 #include "gl_objects.h"
 #include "ground_pass.h"
 #include "mesh_pass.h"
+#include "occlusion_pass.h"
 #include "shadow_map.h"
 #include "sphere_pass.h"
 #include "sub_frames.h"
@@ -102,6 +104,8 @@ struct Renderer::Impl {
     std::optional<detail::MeshPass> mesh;       // compiles no sphere shaders, and so on
     std::vector<detail::MeshPass> props;        // one per prop of the set
     detail::GroundPass ground;
+    detail::EnvironmentLight environment;
+    std::optional<detail::OcclusionPass> occlusion;
     LinearFrame frame;
     bool culling = true;
     GlBackend backend = GlBackend::OSMesa;  // its GL objects live in this back end's context
@@ -133,7 +137,6 @@ struct Renderer::Impl {
             f.lightToward.push_back(normalized(-1.0 * light.direction));
             f.lightRadiance.push_back(srgbToLinear(light.color) * light.intensity);
         }
-        f.ambient = float(s.render.ambient);
         f.specular = float(s.render.specular);
         f.shadowed = !s.lights.empty() && s.lights.front().shadows;
         if (f.shadowed) {
@@ -169,6 +172,40 @@ struct Renderer::Impl {
         f.rampMin = float(f.colorMode == 4 ? s.render.temperatureLow : s.ramp.min);
         f.rampMax = float(f.colorMode == 4 ? s.render.temperatureHigh : s.ramp.max);
         return f;
+    }
+
+    /// The image-based light (prepared once per environment and bound), the materials'
+    /// roughness and metallic, and the shadow's softness.
+    void light(FrameUniforms& f, const FrameSetup& s) {
+        SkyLook sky;
+        const LightSettings key = s.lights.empty() ? LightSettings{} : s.lights.front();
+        sky.sunToward = normalized(-1.0 * key.direction);
+        // Below the horizon: the floor lit by the sun and the sky, seen from above.
+        const Vec3 sun = srgbToLinear(key.color) * key.intensity;
+        const Vec3 floor = s.render.ground ? srgbToLinear(s.render.groundColor) : Vec3{0.3, 0.3, 0.3};
+        const double lit = std::max(sky.sunToward.y, 0.0);
+        sky.ground = {floor.x * (sun.x * lit + 0.4), floor.y * (sun.y * lit + 0.4),
+                      floor.z * (sun.z * lit + 0.4)};
+        if (s.render.environmentIntensity > 0) environment.prepare(s.render.environment, sky);
+        environment.bind();
+        f.irradianceSH = environment.irradiance();
+        f.environmentMaxLod = environment.maxLod();
+        f.environmentIntensity = float(s.render.environmentIntensity);
+        f.shadowSoftness = float(s.render.shadowSoftness);
+        for (std::size_t k = 0; k < f.roughness.size(); ++k) {
+            const SurfaceLook look = k < s.materialLooks.size() ? s.materialLooks[k] : SurfaceLook{};
+            f.roughness[k] = float(look.roughness);
+            f.metallic[k] = float(look.metallic);
+        }
+    }
+
+    /// Screen-space ambient occlusion over what is drawn so far.
+    void occlude(const FrameUniforms& f, const FrameSetup& s, const Bounds3& box) {
+        if (!(s.render.ambientOcclusion > 0)) return;
+        if (!occlusion) occlusion.emplace(samples);
+        const double radius = s.render.occlusionRadius > 0 ? s.render.occlusionRadius
+                                                           : std::max(box.radius(), 1e-3) / 30;
+        occlusion->apply(f, target, float(radius), float(s.render.ambientOcclusion));
     }
 
     /// The motion pass's interval: spheres only, with passes.
@@ -219,6 +256,7 @@ struct Renderer::Impl {
         const Bounds3 box = withGround(s.content.empty ? frameBox : s.content, s.groundHeight);
         const detail::GroundLook look = groundLook(s, box);
         FrameUniforms f = uniforms(s, box, look.fadeEnd);
+        light(f, s);
         f.frameSeconds = motionSeconds(s, content.spheres(), target.passes());
         content.prepare(f);
         while (props.size() < s.props.size()) props.emplace_back();
@@ -231,6 +269,8 @@ struct Renderer::Impl {
         FrameUniforms grey = f;  // the set in a neutral light grey, whatever colours the content
         grey.colorMode = 0;
         grey.baseColor = srgbToLinear(Vec3{0.78, 0.78, 0.76});
+        grey.roughness.fill(0.5f);  // and a satin dielectric
+        grey.metallic.fill(0.0f);
 
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
@@ -252,6 +292,7 @@ struct Renderer::Impl {
             props[k].draw(grey, s.props[k].seeThrough ? Cull::None : Cull::Back);
         }
         if (s.render.ground) ground.draw(f, look);
+        occlude(f, s, box);
         target.read(frame, f.frameSeconds > 0);
         gl::checkErrors("drawing a frame");
     }

@@ -15,6 +15,7 @@
 #include "png_image.h"
 #include "render_settings.h"
 #include "scene_extent.h"
+#include "surface_look.h"
 
 namespace globular {
 
@@ -42,6 +43,8 @@ struct FrameSetup {
     std::vector<Prop> props;
     /// sRGB colour of each material, by index (color_by = material; at most 16).
     std::vector<Vec3> materialColors;
+    /// Roughness and metallic of each material, by index (at most 16); missing: defaults.
+    std::vector<SurfaceLook> materialLooks;
     /// Seconds between frames (1/fps): the interval of the motion pass (renderers made with
     /// passes, spheres only). 0: no motion pass.
     double frameSeconds = 0;

@@ -29,52 +29,125 @@ vec3 albedoFor(float value) {
 }
 )";
 
-// The environment: the light arriving from every direction (sky, or an HDR file).
+// The environment: the light arriving from every direction (the procedural sky, or an HDR
+// file), prepared on the CPU (environment.h): a cube map pre-filtered by roughness for
+// specular light, 9 spherical-harmonic coefficients of the irradiance for diffuse light.
 // environmentRadiance() is the seam other passes (reflections, refraction) call; its
 // signature stays as it is.
 const char* const kEnvironmentLibrary = R"(
 const float PI = 3.14159265358979;
-uniform vec3 uSkyZenith;        // linear radiance straight up
-uniform vec3 uSkyHorizon;       // ... at the horizon
-uniform vec3 uSkyGround;        // ... from below (the ground's bounce)
+uniform samplerCube uEnvironmentMap;  // level l: GGX roughness l / uEnvironmentMaxLod
+uniform float uEnvironmentMaxLod;
+uniform vec3 uIrradianceSH[9];        // E(n) polynomial coefficients (environment.h)
 uniform float uEnvironmentIntensity;
 
 // Radiance arriving from @p worldDirection (unit, pointing away from the surface),
 // averaged over a GGX lobe of perceptual @p roughness (0 = mirror, 1 = fully rough).
 vec3 environmentRadiance(vec3 worldDirection, float roughness) {
-    float y = worldDirection.y;
-    vec3 sky = mix(uSkyHorizon, uSkyZenith, sqrt(max(y, 0.0)));
-    return uEnvironmentIntensity * mix(uSkyGround, sky, smoothstep(-0.05, 0.05, y));
+    float lod = clamp(roughness, 0.0, 1.0) * uEnvironmentMaxLod;
+    return uEnvironmentIntensity * textureLod(uEnvironmentMap, worldDirection, lod).rgb;
+}
+
+// Irradiance on a surface of unit normal @p n: the environment's radiance times the
+// clamped cosine, integrated over the sphere (Ramamoorthi and Hanrahan 2001).
+vec3 environmentIrradiance(vec3 n) {
+    vec3 e = uIrradianceSH[0] + uIrradianceSH[1] * n.y + uIrradianceSH[2] * n.z +
+             uIrradianceSH[3] * n.x + uIrradianceSH[4] * (n.x * n.y) +
+             uIrradianceSH[5] * (n.y * n.z) + uIrradianceSH[6] * (3.0 * n.z * n.z - 1.0) +
+             uIrradianceSH[7] * (n.x * n.z) + uIrradianceSH[8] * (n.x * n.x - n.y * n.y);
+    return uEnvironmentIntensity * max(e, vec3(0.0));
 }
 )";
 
-// One key light with a shadow map, optional fill lights, and a sky term; Blinn-Phong.
+// Physically based shading (metallic workflow), each formula once, named after its
+// paper as in Filament (Guy and Agopian, "Physically Based Rendering in Filament").
+const char* const kBrdfLibrary = R"(
+// Walter, Marschner, Li and Torrance, "Microfacet Models for Refraction through Rough
+// Surfaces", EGSR 2007: the GGX (Trowbridge-Reitz) distribution of normals; a = roughness^2.
+float D_GGX(float NoH, float a) {
+    float a2 = a * a;
+    float f = (NoH * a2 - NoH) * NoH + 1.0;
+    return a2 / (PI * f * f);
+}
+
+// Heitz, "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs", JCGT
+// 2014: Smith's height-correlated masking-shadowing, as V = G / (4 NoV NoL).
+float V_SmithGGXCorrelated(float NoV, float NoL, float a) {
+    float a2 = a * a;
+    float lambdaV = NoL * sqrt((NoV - NoV * a2) * NoV + a2);
+    float lambdaL = NoV * sqrt((NoL - NoL * a2) * NoL + a2);
+    return 0.5 / max(lambdaV + lambdaL, 1e-7);
+}
+
+// Schlick, "An Inexpensive BRDF Model for Physically-based Rendering", Computer Graphics
+// Forum 1994: Fresnel reflectance from its value at normal incidence f0 to f90 at grazing.
+vec3 F_Schlick(vec3 f0, float f90, float VoH) {
+    float x = 1.0 - VoH;
+    float x2 = x * x;
+    return f0 + (vec3(f90) - f0) * (x2 * x2 * x);
+}
+
+// Lambert: a perfectly diffuse surface of albedo 1 reflects E / pi in every direction.
+float Fd_Lambert() { return 1.0 / PI; }
+
+// Karis, "Physically Based Shading on Mobile" (Unreal Engine blog, 2014): an analytic fit
+// of the split-sum environment BRDF (Karis, "Real Shading in Unreal Engine 4", SIGGRAPH
+// 2013): the specular reflectance under uniform light is f0 * x + f90 * y.
+vec2 environmentBrdf(float NoV, float roughness) {
+    const vec4 c0 = vec4(-1.0, -0.0275, -0.572, 0.022);
+    const vec4 c1 = vec4(1.0, 0.0425, 1.04, -0.04);
+    vec4 r = roughness * c0 + c1;
+    float a004 = min(r.x * r.x, exp2(-9.28 * NoV)) * r.x + r.y;
+    return vec2(-1.04, 1.04) * a004 + r.zw;
+}
+)";
+
+// The key light with a soft shadow map, optional fill lights, the environment, and
+// ambient occlusion, through the BRDFs above.
 const char* const kShadingLibrary = R"(
 uniform vec3 uEye;
 uniform int uLightCount;
 uniform vec3 uLightToward[MAX_LIGHTS];    // unit, from the surface towards the light
 uniform vec3 uLightRadiance[MAX_LIGHTS];  // linear colour times intensity
-uniform float uAmbient;
+uniform float uSpecular;                  // dielectrics' reflectance: f0 = 0.16 specular^2
+uniform float uMaterialRoughness[16];     // perceptual, by material index
+uniform float uMaterialMetallic[16];
 uniform int uShadowed;                    // the first light casts shadows
 uniform sampler2DShadow uShadowMap;
 uniform mat4 uLightViewProj;
 uniform float uShadowTexel;               // world units per shadow texel
 uniform float uShadowBias;                // in shadow-map depth units
+uniform float uShadowSoftness;            // penumbra radius, shadow texels
+
+// Jimenez, "Next Generation Post Processing in Call of Duty: Advanced Warfare", SIGGRAPH
+// 2014: interleaved gradient noise, a per-pixel rotation that dithers without patterns.
+float interleavedGradientNoise(vec2 pixel) {
+    return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
+}
 
 float keyLightVisibility(vec3 p, vec3 n) {
     if (uShadowed == 0) return 1.0;
     // Normal offset: sample a little off the surface so it does not shadow itself.
-    vec4 c = uLightViewProj * vec4(p + n * (1.5 * uShadowTexel), 1.0);
+    vec4 c = uLightViewProj * vec4(p + n * ((1.5 + 0.5 * uShadowSoftness) * uShadowTexel), 1.0);
     vec3 s = c.xyz * 0.5 + 0.5;
     if (s.z >= 1.0) return 1.0;
     float ref = s.z - uShadowBias;
     vec2 texel = vec2(1.0) / vec2(textureSize(uShadowMap, 0));
-    // Four bilinear (2x2) comparisons a texel apart: a soft 4x4 percentage-closer edge.
-    float sum = texture(uShadowMap, vec3(s.xy + vec2(-0.75, -0.75) * texel, ref))
-              + texture(uShadowMap, vec3(s.xy + vec2( 0.75, -0.75) * texel, ref))
-              + texture(uShadowMap, vec3(s.xy + vec2(-0.75,  0.75) * texel, ref))
-              + texture(uShadowMap, vec3(s.xy + vec2( 0.75,  0.75) * texel, ref));
-    return 0.25 * sum;
+    // Percentage-closer filtering over a Poisson disc of radius uShadowSoftness texels,
+    // rotated per pixel; each tap is itself a bilinear 2x2 comparison.
+    const vec2 kDisc[8] = vec2[8](vec2(-0.613, 0.617), vec2(0.170, -0.040),
+                                  vec2(-0.299, -0.792), vec2(0.645, 0.493),
+                                  vec2(-0.651, -0.135), vec2(0.421, -0.658),
+                                  vec2(0.030, 0.920), vec2(0.980, -0.100));
+    float angle = 6.2831853 * interleavedGradientNoise(gl_FragCoord.xy);
+    mat2 rotate = mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
+    float radius = max(uShadowSoftness, 0.75);
+    float sum = 0.0;
+    for (int k = 0; k < 8; ++k) {
+        vec2 offset = rotate * kDisc[k] * radius * texel;
+        sum += texture(uShadowMap, vec3(s.xy + offset, ref));
+    }
+    return sum / 8.0;
 }
 
 // The compositing passes (frame_target.h), weighted by the colour's alpha so the resolve
@@ -96,19 +169,45 @@ void writePasses(vec3 p, vec3 n, vec3 velocity, float weight) {
     fragMotion = (next.xy / next.w - now.xy / now.w) * 0.5 * uPassViewport * weight;
 }
 
-vec3 shade(vec3 p, vec3 n, vec3 albedo, float specular) {
-    // Sky light: full from above, 60% from below (the ground returns some).
-    vec3 color = albedo * uAmbient * (0.8 + 0.2 * n.y);
+// Outgoing radiance towards the eye from point p of unit normal n, base colour (linear),
+// perceptual roughness and metallic in [0, 1]. Metallic workflow: dielectrics reflect
+// f0 = 0.16 uSpecular^2 (4% by default) and diffuse the rest; metals reflect their base
+// colour and diffuse nothing. Light intensity 1 lights a white diffuse surface facing it
+// to 1 (its irradiance is pi).
+vec3 shade(vec3 p, vec3 n, vec3 baseColor, float roughness, float metallic) {
     vec3 v = normalize(uEye - p);
+    float NoV = max(dot(n, v), 1e-4);
+    float r = clamp(roughness, 0.045, 1.0);  // below it the lobe is thinner than a float
+    float a = r * r;
+    vec3 diffuseColor = (1.0 - metallic) * baseColor;
+    vec3 f0 = mix(vec3(0.16 * uSpecular * uSpecular), baseColor, metallic);
+    // No reflectance at all (specular = 0, dielectric) means none at grazing angles either.
+    float f90 = clamp(50.0 * dot(f0, vec3(0.33)), 0.0, 1.0);
+    // Image-based light, split sum: what the specular lobe takes is not diffused.
+    vec2 dfg = environmentBrdf(NoV, r);
+    vec3 specularAlbedo = f0 * dfg.x + f90 * dfg.y;
+    vec3 color = diffuseColor * (1.0 - specularAlbedo) * Fd_Lambert() * environmentIrradiance(n) +
+                 specularAlbedo * environmentRadiance(reflect(-v, n), r);
     for (int i = 0; i < uLightCount; ++i) {
-        float ndl = dot(n, uLightToward[i]);
-        if (ndl <= 0.0) continue;
+        vec3 l = uLightToward[i];
+        float NoL = dot(n, l);
+        if (NoL <= 0.0) continue;
         float visible = i == 0 ? keyLightVisibility(p, n) : 1.0;
-        vec3 h = normalize(uLightToward[i] + v);
-        float highlight = specular * pow(max(dot(n, h), 0.0), 60.0);
-        color += visible * uLightRadiance[i] * (albedo * ndl + vec3(highlight));
+        vec3 h = normalize(l + v);
+        float NoH = clamp(dot(n, h), 0.0, 1.0);
+        float VoH = clamp(dot(v, h), 0.0, 1.0);
+        vec3 F = F_Schlick(f0, f90, VoH);
+        vec3 specular = D_GGX(NoH, a) * V_SmithGGXCorrelated(NoV, NoL, a) * F;
+        vec3 diffuse = diffuseColor * (1.0 - F) * Fd_Lambert();
+        color += visible * uLightRadiance[i] * (PI * NoL) * (diffuse + specular);
     }
     return color;
+}
+
+// As above with the roughness and metallic of material @p material (an index).
+vec3 shadeMaterial(vec3 p, vec3 n, vec3 baseColor, float material) {
+    int k = clamp(int(material + 0.5), 0, 15);
+    return shade(p, n, baseColor, uMaterialRoughness[k], uMaterialMetallic[k]);
 }
 )";
 
@@ -116,7 +215,7 @@ vec3 shade(vec3 p, vec3 n, vec3 albedo, float specular) {
 
 std::string version() { return kVersion; }
 std::string fragment(const std::string& body) {
-    return version() + kColorLibrary + kEnvironmentLibrary + kShadingLibrary + body;
+    return version() + kColorLibrary + kEnvironmentLibrary + kBrdfLibrary + kShadingLibrary + body;
 }
 std::string vertex(const std::string& body) { return version() + kColorLibrary + body; }
 
@@ -125,13 +224,16 @@ std::string meshVertex() {
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;  // (0, 0, 0) when the mesh has none
 layout(location = 2) in float aValue;  // material or temperature; 0 when the mesh has none
+layout(location = 3) in float aMaterial;  // material index; 0 when the mesh has none
 uniform mat4 uViewProj;
 out vec3 vWorld;
 out vec3 vNormal;
 out vec3 vAlbedo;
+flat out float vMaterial;
 void main() {
     vWorld = aPosition;
     vNormal = aNormal;
+    vMaterial = aMaterial;
     vAlbedo = albedoFor(uColorMode == 2 ? aPosition.y : aValue);
     gl_Position = uViewProj * vec4(aPosition, 1.0);
 }
@@ -143,14 +245,14 @@ std::string meshFragment() {
 in vec3 vWorld;
 in vec3 vNormal;
 in vec3 vAlbedo;
-uniform float uSpecular;
+flat in float vMaterial;
 layout(location = 0) out vec4 fragColor;
 void main() {
     vec3 n = dot(vNormal, vNormal) > 0.25 ? normalize(vNormal)
                                           : normalize(cross(dFdx(vWorld), dFdy(vWorld)));
     // Two-sided: an open or inward-wound mesh still shades from the side we see.
     if (dot(n, uEye - vWorld) < 0.0) n = -n;
-    fragColor = vec4(shade(vWorld, n, vAlbedo, uSpecular), 1.0);
+    fragColor = vec4(shadeMaterial(vWorld, n, vAlbedo, vMaterial), 1.0);
     writePasses(vWorld, n, vec3(0.0), 1.0);
 }
 )");
@@ -203,7 +305,8 @@ float filteredChecker(vec2 p) {
 void main() {
     float checker = filteredChecker(vWorld.xz / uCheckerSize);
     vec3 albedo = uGroundColor * (1.0 - uCheckerContrast * checker);
-    vec3 color = shade(vWorld, vec3(0.0, 1.0, 0.0), albedo, 0.0);
+    // A matte studio floor: rough, dielectric.
+    vec3 color = shade(vWorld, vec3(0.0, 1.0, 0.0), albedo, 0.8, 0.0);
     float fade = smoothstep(uFade.x, uFade.y, length(vWorld.xz - uFadeCenter));
     // Premultiplied: over a transparent background the ground fades into alpha.
     float alpha = mix(1.0, uBackgroundAlpha, fade);

@@ -13,7 +13,7 @@ namespace globular::detail {
 
 namespace {
 
-enum Array { kX, kY, kZ, kRadius, kSpeed, kVx, kVy, kVz };
+enum Array { kX, kY, kZ, kRadius, kSpeed, kVx, kVy, kVz, kMaterial };
 
 // Sprites are chosen below this fraction of the largest size the vertex shader accepts,
 // so a float difference between this file and the shader cannot lose a sphere.
@@ -63,9 +63,11 @@ SpherePass::SpherePass(int samples)
       mSquareArray(gl::makeVertexArray()),
       mTileArray(gl::makeVertexArray()),
       mArrays{gl::makeBuffer(), gl::makeBuffer(), gl::makeBuffer(), gl::makeBuffer(),
-              gl::makeBuffer(), gl::makeBuffer(), gl::makeBuffer(), gl::makeBuffer()},
+              gl::makeBuffer(), gl::makeBuffer(), gl::makeBuffer(), gl::makeBuffer(),
+              gl::makeBuffer()},
       mTextures{gl::makeTexture(), gl::makeTexture(), gl::makeTexture(), gl::makeTexture(),
-                gl::makeTexture(), gl::makeTexture(), gl::makeTexture(), gl::makeTexture()},
+                gl::makeTexture(), gl::makeTexture(), gl::makeTexture(), gl::makeTexture(),
+                gl::makeTexture()},
       mCorners(gl::makeBuffer()),
       mSquares(gl::makeBuffer()),
       mSquareIds(gl::makeBuffer()),
@@ -132,7 +134,12 @@ void SpherePass::upload(const Globules& g, Value value, const FrameUniforms& f) 
     uploadFloats(mArrays[kVx], withMotion ? g.vx.data() : &still, withMotion ? n : 1);
     uploadFloats(mArrays[kVy], withMotion ? g.vy.data() : &still, withMotion ? n : 1);
     uploadFloats(mArrays[kVz], withMotion ? g.vz.data() : &still, withMotion ? n : 1);
-    for (int i = kX; i <= kVz; ++i) {
+    // Each globule's roughness and metallic come from its material.
+    mSeveralMaterials = g.material.size() == n && n > 0;
+    std::vector<float> material(mSeveralMaterials ? n : 1, 0.0f);
+    for (std::size_t i = 0; mSeveralMaterials && i < n; ++i) material[i] = g.material[i];
+    uploadFloats(mArrays[kMaterial], material.data(), material.size());
+    for (int i = kX; i <= kMaterial; ++i) {
         glBindTexture(GL_TEXTURE_BUFFER, mTextures[i].id());
         glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, mArrays[i].id());
     }
@@ -307,8 +314,9 @@ void SpherePass::drawShading(const FrameUniforms& f, const FrameTarget& target) 
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(mSamples > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D, target.idTexture());
     glUniform1i(mShade.uniform("uIds"), 1);
-    const char* names[] = {"uX", "uY", "uZ", "uRadius", "uValue", "uVx", "uVy", "uVz"};
-    for (int i = kX; i <= kVz; ++i) {
+    const char* names[] = {"uX", "uY", "uZ", "uRadius", "uValue", "uVx", "uVy", "uVz", "uMaterial"};
+    glUniform1i(mShade.uniform("uMaterials"), mSeveralMaterials ? 2 : 1);
+    for (int i = kX; i <= kMaterial; ++i) {
         glActiveTexture(GL_TEXTURE2 + i);
         glBindTexture(GL_TEXTURE_BUFFER, mTextures[i].id());
         glUniform1i(mShade.uniform(names[i]), 2 + i);

@@ -64,10 +64,12 @@ class SpherePass {
     float mMaxSprite;  // pixels or texels; bigger spheres are drawn as squares
     gl::Program mVisibilityPoints, mVisibilitySquares, mShade, mShadowPoints, mShadowSquares;
     gl::VertexArray mPointArray, mSquareArray, mTileArray;
-    // x, y, z, radius, value (speed, material or temperature), and the velocity's x, y, z
-    // (with the motion pass; one zero otherwise)
-    std::array<gl::Buffer, 8> mArrays;
-    std::array<gl::Texture, 8> mTextures;  // the same, as buffer textures
+    // x, y, z, radius, value (speed, material or temperature), the velocity's x, y, z
+    // (with the motion pass; one zero otherwise), and the material index (several
+    // materials; one zero otherwise)
+    std::array<gl::Buffer, 9> mArrays;
+    std::array<gl::Texture, 9> mTextures;  // the same, as buffer textures
+    bool mSeveralMaterials = false;
     gl::Buffer mCorners, mSquares, mSquareIds, mTiles;
     gl::Buffer mVisibleIndices, mShadowIndices;  // element arrays of the culled sprites
     bool mCulling = true;

@@ -183,7 +183,8 @@ uniform samplerBuffer uValue;
 uniform samplerBuffer uVx;  // velocity, world units/s (zero without the motion pass)
 uniform samplerBuffer uVy;
 uniform samplerBuffer uVz;
-uniform float uSpecular;
+uniform samplerBuffer uMaterial;  // material index (one element, 0, with one material)
+uniform int uMaterials;           // 1: one material, uMaterial not read
 layout(location = 0) out vec4 fragColor;
 
 void main() {
@@ -211,7 +212,8 @@ void main() {
     float outside, along;
     vec3 hit = uEye + sphereHitDistance(uEye, dir, c, r, outside, along) * dir;
     vec3 n = normalize(hit - c);
-    fragColor = vec4(shade(hit, n, albedo, uSpecular), 1.0);
+    float material = uMaterials > 1 ? texelFetch(uMaterial, k).r : 0.0;
+    fragColor = vec4(shadeMaterial(hit, n, albedo, material), 1.0);
     vec3 velocity = uFrameSeconds > 0.0 ? vec3(texelFetch(uVx, k).r, texelFetch(uVy, k).r,
                                                texelFetch(uVz, k).r)
                                           : vec3(0.0);

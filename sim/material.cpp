@@ -28,6 +28,11 @@ void MaterialSettings::describe(SettingsSection& s) {
     s.vec3("color", color, NumberRange::between(0, 1),
            "sRGB colour for [render] color_by = \"material\"; [0, 0, 0]: one of a palette "
            "by the material's place");
+    s.number("roughness", roughness, NumberRange::between(0, 1),
+             "render: perceptual roughness of its surface, 0 = mirror, 1 = fully rough (GGX)");
+    s.number("metallic", metallic, NumberRange::between(0, 1),
+             "render: 0 = dielectric (plastic, water: 4% reflectance, the rest diffused), 1 = "
+             "metal (reflects its base colour, diffuses nothing)");
     s.number("heat_capacity", heatCapacity, NumberRange::positive(),
              "thermal: heat capacity per unit mass");
     s.number("conductivity", conductivity, NumberRange::nonNegative(),

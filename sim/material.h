@@ -42,6 +42,8 @@ struct MaterialSettings : ForceConstants {
     /// sRGB colour for [render] color_by = "material"; (0, 0, 0): a distinct colour by
     /// the material's place in the scene (materialColor).
     Vec3 color{0, 0, 0};
+    double roughness = 0.35;  ///< render: perceptual roughness in [0, 1] (surface_look.h)
+    double metallic = 0;      ///< render: 0 = dielectric, 1 = metal
 
     // Heat. A globule's heat capacity is its mass times heatCapacity.
     double heatCapacity = 1.0;  ///< per unit mass

@@ -42,7 +42,8 @@ FrameSetup sphereSetup() {
     s.lights = {light};
     s.render.ground = false;
     s.render.specular = 0;
-    s.render.ambient = 0;
+    s.render.environmentIntensity = 0;  // no sky light
+    s.render.ambientOcclusion = 0;
     s.render.color = {0.8, 0.3, 0.2};
     return s;
 }

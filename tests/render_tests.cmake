@@ -10,12 +10,14 @@ globular_test(render_unit_tests
             contact_sheet_test.cpp
             sphere_culling_test.cpp
             tone_map_test.cpp
-    LIBS globular_render)
+            environment_test.cpp
+    LIBS globular_render OpenEXR::OpenEXR Imath::Imath)
 globular_test(renderer_tests
     SOURCES renderer_test.cpp
             render_golden_test.cpp
             render_output_test.cpp
             motion_blur_test.cpp
+            lighting_test.cpp
             gl_backend_test.cpp
     LIBS globular_render OpenEXR::OpenEXR Imath::Imath)
 globular_test(render_stage_tests

@@ -45,7 +45,8 @@ FrameSetup flatSetup() {
     light.intensity = 1;
     light.shadows = false;
     s.lights = {light};
-    s.render.ambient = 0;
+    s.render.environmentIntensity = 0;  // no sky light
+    s.render.ambientOcclusion = 0;
     s.render.specular = 0;
     s.render.ground = false;
     s.render.color = {0.8, 0.3, 0.2};  // sRGB bytes 204, 77, 51
@@ -258,6 +259,8 @@ TEST(Renderer, EmptyFrameShowsTheGroundAlone) {
     FrameSetup setup;
     setup.camera = {{0, 4, 12}, {0, 0, 0}, 40};
     setup.lights = {LightSettings{}};
+    setup.render.environmentIntensity = 0;  // the key light alone, matte
+    setup.render.specular = 0;
     const Image image = renderer.drawSpheres(Globules{}, setup);
     // Sky: the background exactly.
     const Vec3 bg = setup.render.background;
@@ -269,9 +272,8 @@ TEST(Renderer, EmptyFrameShowsTheGroundAlone) {
     const Vec3 ground = srgbToLinear(setup.render.groundColor);
     const Vec3 toward = normalized(-1.0 * LightSettings{}.direction);
     const Vec3 light = srgbToLinear(LightSettings{}.color);
-    const double ambient = setup.render.ambient;
     const auto [r, g, b] = rgb(image, kWidth / 2, kHeight - 3);
-    const double lit = ambient + light.x * toward.y;  // red channel
+    const double lit = light.x * toward.y;  // red channel
     EXPECT_LE(r, srgbByte(ground.x * lit) + 1);
     EXPECT_GE(r, srgbByte(ground.x * lit * (1 - 0.12)) - 1);
     EXPECT_GT(g, 0);
@@ -287,6 +289,9 @@ TEST(Renderer, KeyLightCastsAShadowOnTheGround) {
     sun.color = {1, 1, 1};
     setup.lights = {sun};
     setup.render.checkerSize = 1000;  // one checker square: a uniform ground
+    setup.render.environmentIntensity = 0;  // the key light alone, matte, no occlusion
+    setup.render.specular = 0;
+    setup.render.ambientOcclusion = 0;
     const Globules g = oneSphere({0, 3, 0}, 1);
     Bounds3 content;
     content.add(Vec3{-4, 0, -4});
@@ -303,13 +308,9 @@ TEST(Renderer, KeyLightCastsAShadowOnTheGround) {
     const Vec3 ground = srgbToLinear(setup.render.groundColor);
     const auto [sx, sy] = pixelOf({0, 0, 0.6});  // in the shadow, in front of the sphere
     const auto [lx, ly] = pixelOf({3, 0, 0});    // in the sun
-    const double ambient = setup.render.ambient;
     // Light squares of the checker are the ground colour itself (checker 0 there).
-    expectColor(
-        image, sx, sy,
-        {srgbByte(ground.x * ambient), srgbByte(ground.y * ambient), srgbByte(ground.z * ambient)},
-        3);
-    EXPECT_NEAR(rgb(image, lx, ly)[0], srgbByte(ground.x * (ambient + 1)), 3);
+    expectColor(image, sx, sy, {0, 0, 0}, 1);
+    EXPECT_NEAR(rgb(image, lx, ly)[0], srgbByte(ground.x), 3);
 }
 
 TEST(Renderer, MeshCoversItsProjection) {

@@ -1,0 +1,208 @@
+// Physically based shading and light (render/shaders.cpp, environment.h): the white
+// furnace (energy is conserved), roughness and metallic per material, soft shadows, the
+// environment file's errors, ambient occlusion at contacts.
+
+#include <gtest/gtest.h>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "errors.h"
+#include "renderer.h"
+
+namespace globular {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kSize = 64;
+
+/// A lat-long OpenEXR of one radiance everywhere.
+fs::path uniformEnvironment(float radiance) {
+    const fs::path dir = fs::temp_directory_path() / "globular_lighting_test";
+    fs::create_directories(dir);
+    const fs::path path = dir / ("uniform_" + std::to_string(radiance) + ".exr");
+    const int width = 16, height = 8;
+    std::vector<float> rgb(std::size_t(3) * width * height, radiance);
+    Imf::Header header(width, height);
+    Imf::FrameBuffer buffer;
+    for (int c = 0; c < 3; ++c) {
+        const char* name = c == 0 ? "R" : c == 1 ? "G" : "B";
+        header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+        buffer.insert(name, Imf::Slice(Imf::FLOAT, (char*)(rgb.data() + c), 3 * sizeof(float),
+                                       3 * sizeof(float) * width));
+    }
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(buffer);
+    file.writePixels(height);
+    return path;
+}
+
+Globules oneSphere(Vec3 center, float radius, uint8_t material = 0) {
+    Globules g;
+    g.add(center, {}, radius, 1, 0);
+    if (material != 0) g.material = {material};
+    return g;
+}
+
+/// A camera on +z at distance 6 looking at a unit sphere at the origin (about 15 pixels
+/// of radius), nothing else: no ground, no lights, no occlusion.
+FrameSetup bareSetup() {
+    FrameSetup s;
+    s.camera = {{0, 0, 6}, {0, 0, 0}, 40};
+    s.lights = {};
+    s.render.ground = false;
+    s.render.ambientOcclusion = 0;
+    s.render.background = {0, 0, 0};
+    s.render.color = {1, 1, 1};
+    return s;
+}
+
+/// Linear red of the pixel at (dx, dy) pixels from the image's centre.
+float redAt(const LinearFrame& f, int dx, int dy) {
+    return f.pixel(kSize / 2 + dx, kSize / 2 + dy)[0];
+}
+
+// A white diffuse sphere under a uniform white environment reflects exactly what arrives
+// at every point: diffuse and specular share the light without creating or losing any.
+TEST(Lighting, WhiteFurnace) {
+    Renderer renderer(kSize, kSize, 1);
+    FrameSetup s = bareSetup();
+    s.render.environment = uniformEnvironment(1.0f).string();
+    for (double roughness : {1.0, 0.5, 0.1}) {
+        s.materialLooks = {{roughness, 0.0}};
+        renderer.drawSpheres(oneSphere({0, 0, 0}, 1), s);
+        const LinearFrame& f = renderer.lastFrame();
+        int checked = 0;
+        for (int dy = -12; dy <= 12; ++dy) {
+            for (int dx = -12; dx <= 12; ++dx) {
+                if (dx * dx + dy * dy > 12 * 12) continue;
+                for (int c = 0; c < 3; ++c) {
+                    EXPECT_NEAR(f.pixel(kSize / 2 + dx, kSize / 2 + dy)[c], 1.0, 0.03)
+                        << "roughness " << roughness << " at (" << dx << ", " << dy << ")";
+                }
+                ++checked;
+            }
+        }
+        EXPECT_GT(checked, 400);
+    }
+}
+
+// Twice the environment, twice the light; none, black.
+TEST(Lighting, EnvironmentIntensityScalesTheLight) {
+    Renderer renderer(kSize, kSize, 1);
+    FrameSetup s = bareSetup();
+    s.render.environment = uniformEnvironment(1.0f).string();
+    s.render.environmentIntensity = 2;
+    renderer.drawSpheres(oneSphere({0, 0, 0}, 1), s);
+    EXPECT_NEAR(redAt(renderer.lastFrame(), 0, 0), 2.0, 0.06);
+    s.render.environmentIntensity = 0;
+    renderer.drawSpheres(oneSphere({0, 0, 0}, 1), s);
+    EXPECT_EQ(redAt(renderer.lastFrame(), 0, 0), 0.0f);
+}
+
+FrameSetup keyLitSetup() {
+    FrameSetup s = bareSetup();
+    s.render.environmentIntensity = 0;
+    LightSettings light;
+    light.direction = {-0.3, -0.3, -1};  // from behind the camera, up and to the right
+    light.color = {1, 1, 1};
+    light.shadows = false;
+    s.lights = {light};
+    return s;
+}
+
+float brightest(const LinearFrame& f) {
+    float most = 0;
+    for (std::size_t i = 0; i < f.rgba.size(); i += 4) most = std::max(most, f.rgba[i]);
+    return most;
+}
+
+// A smooth surface concentrates the light's reflection into a small bright highlight; a
+// rough one spreads it thin (the same energy).
+TEST(Lighting, RoughnessSpreadsTheHighlight) {
+    Renderer renderer(kSize, kSize, 1);
+    FrameSetup s = keyLitSetup();
+    s.render.color = {0, 0, 0};  // black: the highlight alone
+    s.materialLooks = {{0.15, 0.0}};
+    renderer.drawSpheres(oneSphere({0, 0, 0}, 1), s);
+    const float smooth = brightest(renderer.lastFrame());
+    s.materialLooks = {{0.8, 0.0}};
+    renderer.drawSpheres(oneSphere({0, 0, 0}, 1), s);
+    const float rough = brightest(renderer.lastFrame());
+    EXPECT_GT(smooth, 4 * rough);
+    EXPECT_GT(rough, 0.005f);
+}
+
+// A metal diffuses nothing: away from its highlight it is dark; a dielectric of the same
+// colour shows its colour there. Each globule takes its own material's values.
+TEST(Lighting, MetalsReflectTheirColourAndDiffuseNothing) {
+    Renderer renderer(kSize, kSize, 1);
+    FrameSetup s = keyLitSetup();
+    s.render.color = {0.9, 0.2, 0.1};
+    s.materialLooks = {{0.3, 0.0}, {0.3, 1.0}};
+    renderer.drawSpheres(oneSphere({0, 0, 0}, 1, 0), s);
+    const float dielectric = redAt(renderer.lastFrame(), -8, 8);  // lower left: off the highlight
+    renderer.drawSpheres(oneSphere({0, 0, 0}, 1, 1), s);
+    const float metal = redAt(renderer.lastFrame(), -8, 8);
+    EXPECT_GT(dielectric, 0.3f);
+    EXPECT_LT(metal, 0.1f * dielectric);
+    EXPECT_GT(brightest(renderer.lastFrame()), 0.5f);  // its highlight is there
+}
+
+// The shadow's edge on the ground: hard without softness, a penumbra several texels wide
+// with it.
+int penumbraPixels(double softness) {
+    Renderer renderer(kSize, kSize, 1, 256);
+    FrameSetup s = bareSetup();
+    s.render.ground = true;
+    s.render.checkerSize = 1000;
+    s.render.environmentIntensity = 0;
+    s.render.specular = 0;
+    s.render.shadowSoftness = softness;
+    s.camera = {{0, 14, 0.01}, {0, 0, 0}, 40};  // looking straight down
+    LightSettings sun;
+    sun.direction = {1, -1, 0};  // the shadow falls beside the sphere
+    sun.color = {1, 1, 1};
+    s.lights = {sun};
+    Bounds3 content;
+    content.add(Vec3{-4, 0, -4});
+    content.add(Vec3{4, 4, 4});
+    s.content = content;
+    renderer.drawSpheres(oneSphere({-1.5, 2, 0}, 1.5), s);
+    const LinearFrame& f = renderer.lastFrame();
+    const float lit = f.pixel(1, 1)[0];  // a corner of the ground in the sun
+    int between = 0;
+    for (std::size_t i = 0; i < f.rgba.size(); i += 4) {
+        if (f.rgba[i] > 0.1f * lit && f.rgba[i] < 0.8f * lit) ++between;  // checker: 0.88
+    }
+    return between;
+}
+
+// (The sphere's own limb counts the same in both.)
+TEST(Lighting, ShadowSoftnessWidensThePenumbra) {
+    const int hard = penumbraPixels(0), soft = penumbraPixels(8);
+    EXPECT_GT(soft, 2 * hard) << "hard " << hard << ", soft " << soft;
+}
+
+TEST(Lighting, MissingEnvironmentFileIsAnErrorNamingIt) {
+    Renderer renderer(kSize, kSize, 1);
+    FrameSetup s = bareSetup();
+    s.render.environment = "/nonexistent/sky_for_test.exr";
+    try {
+        renderer.drawSpheres(oneSphere({0, 0, 0}, 1), s);
+        FAIL() << "no error";
+    } catch (const IoError& e) {
+        EXPECT_NE(std::string(e.what()).find("sky_for_test.exr"), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace globular
