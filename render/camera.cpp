@@ -1,6 +1,7 @@
 #include "camera.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -17,9 +18,91 @@ constexpr double kFill = 0.9;  // the content fills at most this fraction of the
 
 double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
 
+struct ViewAxes {
+    Vec3 toEye, forward, side, up;
+};
+
+ViewAxes viewAxes() {
+    const double azimuth = radians(kAzimuthDegrees), elevation = radians(kElevationDegrees);
+    ViewAxes a;
+    a.toEye = {std::cos(elevation) * std::sin(azimuth), std::sin(elevation),
+               std::cos(elevation) * std::cos(azimuth)};
+    a.forward = -1.0 * a.toEye;
+    a.side = normalized(cross(a.forward, Vec3{0, 1, 0}));
+    a.up = cross(a.side, a.forward);
+    return a;
+}
+
+/// The value that a fraction @p keep of @p values lie at or above (at or below for
+/// @p upper): the window edge that holds the content of that many frames.
+double quantileEdge(std::vector<double> values, double keep, bool upper) {
+    const double rank = (upper ? keep : 1.0 - keep) * double(values.size() - 1);
+    const auto k = std::size_t(upper ? std::ceil(rank) : std::floor(rank));
+    std::nth_element(values.begin(), values.begin() + k, values.end());
+    return values[k];
+}
+
+/// Frames the frames' boxes (each with its foot on the ground): the window that holds
+/// each edge of the content in kFramedFraction of the frames, centred and filling kFill
+/// of the image in its tighter direction.
+ViewCamera frameTheAction(const std::vector<Bounds3>& frames, double groundHeight, double fov,
+                          double aspect) {
+    const ViewAxes a = viewAxes();
+    const double tanY = std::tan(radians(fov) / 2) * kFill;
+    const double tanX = tanY * aspect;
+    std::vector<std::array<Vec3, 8>> corners;
+    for (const Bounds3& b : frames) {
+        std::array<Vec3, 8> c;
+        const double bottom = std::min(b.min.y, groundHeight);  // its foot, and its shadow
+        for (int k = 0; k < 8; ++k) {
+            c[k] = {(k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : bottom,
+                    (k & 4) ? b.max.z : b.min.z};
+        }
+        corners.push_back(c);
+    }
+    // Start from the typical frame (the median of the frames' centres and sizes), then
+    // re-aim and re-fit to the quantiles until they hold still.
+    const std::size_t n = frames.size();
+    std::vector<double> xs, ys, zs, sizes;
+    for (const Bounds3& b : frames) {
+        xs.push_back(b.center().x);
+        ys.push_back(b.center().y);
+        zs.push_back(b.center().z);
+        sizes.push_back(b.radius());
+    }
+    Vec3 target{quantileEdge(xs, 0.5, true), quantileEdge(ys, 0.5, true),
+                quantileEdge(zs, 0.5, true)};
+    const double size = std::max(quantileEdge(sizes, 0.5, true), 1e-6);
+    double distance = size / std::min(tanX, tanY) + size;
+    std::vector<double> left(n), right(n), bottom(n), top(n);
+    for (int pass = 0; pass < 16; ++pass) {
+        for (std::size_t f = 0; f < n; ++f) {
+            left[f] = bottom[f] = 1e300;
+            right[f] = top[f] = -1e300;
+            for (const Vec3& p : corners[f]) {
+                const Vec3 o = p - target;
+                const double depth = distance + dot(o, a.forward);
+                const double scale = 1.0 / std::max(depth, 1e-9 * distance);
+                left[f] = std::min(left[f], dot(o, a.side) * scale);
+                right[f] = std::max(right[f], dot(o, a.side) * scale);
+                bottom[f] = std::min(bottom[f], dot(o, a.up) * scale);
+                top[f] = std::max(top[f], dot(o, a.up) * scale);
+            }
+        }
+        const double l = quantileEdge(left, kFramedFraction, false);
+        const double r = quantileEdge(right, kFramedFraction, true);
+        const double b = quantileEdge(bottom, kFramedFraction, false);
+        const double t = quantileEdge(top, kFramedFraction, true);
+        target = target + a.side * (0.5 * (l + r) * distance) + a.up * (0.5 * (b + t) * distance);
+        distance *= std::max({0.5 * (r - l) / tanX, 0.5 * (t - b) / tanY, 1e-6});
+    }
+    return {target + a.toEye * distance, target, fov};
+}
+
 }  // namespace
 
 ViewCamera autoFrame(const SceneExtent& extent, double groundHeight, double fov, double aspect) {
+    if (!extent.frames.empty()) return frameTheAction(extent.frames, groundHeight, fov, aspect);
     std::vector<Vec3> points = extent.samples;
     points.insert(points.end(), extent.extremes.begin(), extent.extremes.end());
     double pad = extent.maxRadius;
@@ -41,12 +124,8 @@ ViewCamera autoFrame(const SceneExtent& extent, double groundHeight, double fov,
     for (std::size_t i = 0; i < count; ++i)
         points.push_back({points[i].x, groundHeight, points[i].z});
 
-    const double azimuth = radians(kAzimuthDegrees), elevation = radians(kElevationDegrees);
-    const Vec3 toEye{std::cos(elevation) * std::sin(azimuth), std::sin(elevation),
-                     std::cos(elevation) * std::cos(azimuth)};
-    const Vec3 forward = -1.0 * toEye;
-    const Vec3 side = normalized(cross(forward, Vec3{0, 1, 0}));
-    const Vec3 up = cross(side, forward);
+    const ViewAxes axes = viewAxes();
+    const Vec3 toEye = axes.toEye, forward = axes.forward, side = axes.side, up = axes.up;
     const double tanY = std::tan(radians(fov) / 2) * kFill;
     const double tanX = tanY * aspect;
 

@@ -19,7 +19,16 @@ struct ViewCamera {
 /// their feet on the ground at @p groundHeight) is centred in the central 90% of an image
 /// of aspect @p aspect (width / height). Without samples it frames the box's corners;
 /// an empty extent frames a few units of ground around the origin.
+///
+/// When @p extent holds frames (SceneExtent::endFrame), it frames the action instead: the
+/// window that holds each edge of the frames' boxes in kFramedFraction of the frames, so
+/// a moment that reaches far (a tall falling column, a splash) may leave the picture
+/// rather than shrink the subject of the rest of the shot. One camera for the whole
+/// shot either way.
 ViewCamera autoFrame(const SceneExtent& extent, double groundHeight, double fov, double aspect);
+
+/// The fraction of the frames whose content each edge of the automatic framing holds.
+inline constexpr double kFramedFraction = 0.75;
 
 /// Near and far clip distances (world units) that hold @p content and the ground out to
 /// @p groundReach from the content's centre, for a camera at @p eye.

@@ -125,6 +125,7 @@ SceneExtent animationExtent(const RenderJob& job, const std::vector<ColliderSoli
         } else {
             extent.addFrame(readCache(ctx.outDir, f));
         }
+        extent.endFrame();
     }
     return extent;
 }

@@ -128,6 +128,8 @@ void SceneExtent::addFrame(const Globules& g) {
     maxRadius = std::max(maxRadius, radiusHi);
     box.add(frameBox.min - grow);
     box.add(frameBox.max + grow);
+    currentFrame.add(frameBox.min - grow);
+    currentFrame.add(frameBox.max + grow);
     height.add(lo[1], hi[1]);
 
     if (g.vx.size() != n || g.vy.size() != n || g.vz.size() != n) return;
@@ -153,7 +155,13 @@ void SceneExtent::addPoints(const float* positions, std::size_t vertexCount) {
         return Vec3{positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]};
     });
     box.add(frameBox);
+    currentFrame.add(frameBox);
     height.add(lo[1], hi[1]);
+}
+
+void SceneExtent::endFrame() {
+    if (!currentFrame.empty) frames.push_back(currentFrame);
+    currentFrame = {};
 }
 
 }  // namespace globular

@@ -42,11 +42,18 @@ struct SceneExtent {
     /// framing reaches the real top of a falling column however sparse the sample.
     std::vector<Vec3> extremes;
     double maxRadius = 0;  ///< robust largest radius, world units
+    /// Each frame's robust box (what addFrame and addPoints merged since the last
+    /// endFrame), in order: automatic framing frames where the content is for most of
+    /// the shot rather than everywhere it ever goes.
+    std::vector<Bounds3> frames;
+    Bounds3 currentFrame;  ///< merged since the last endFrame()
 
     /// Merges one frame's robust extent.
     void addFrame(const Globules& globules);
     /// Merges a mesh's vertices (@p positions: x, y, z per vertex).
     void addPoints(const float* positions, std::size_t vertexCount);
+    /// Closes the current frame: its box joins `frames` (unless nothing was added).
+    void endFrame();
 };
 
 /// The fraction of each tail that is ignored per frame.

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "transform.h"
@@ -88,6 +89,86 @@ TEST(AutoFrame, SamplesAreCentredAndFitWithTheirRadius) {
     }
     // Centred: the projected extent is (nearly) symmetric about the image centre.
     EXPECT_NEAR(left + right, 0, 0.1);
+}
+
+/// A box's corners projected by @p cam: the extent in NDC, [left, right, bottom, top].
+std::array<double, 4> projectedBox(const ViewCamera& cam, double aspect, const Bounds3& b) {
+    std::array<double, 4> e{1e300, -1e300, 1e300, -1e300};
+    for (int k = 0; k < 8; ++k) {
+        const Vec4 c = project(cam, aspect, {k & 1 ? b.max.x : b.min.x, k & 2 ? b.max.y : b.min.y,
+                                             k & 4 ? b.max.z : b.min.z});
+        e = {std::min(e[0], c.x), std::max(e[1], c.x), std::min(e[2], c.y), std::max(e[3], c.y)};
+    }
+    return e;
+}
+
+Bounds3 boxOf(Vec3 lo, Vec3 hi) {
+    Bounds3 b;
+    b.add(lo);
+    b.add(hi);
+    return b;
+}
+
+TEST(AutoFrame, FramesWhereTheContentIsForMostOfTheShotNotItsTallestMoment) {
+    // The paper's pour: a column 2 wide that falls from 80 units for 40 frames into a
+    // puddle 12 wide and 2 high, which stays for 110 frames.
+    SceneExtent extent;
+    for (int f = 0; f < 150; ++f) {
+        const double top = f < 40 ? 80.0 - 78.0 * f / 40 : 2.0;
+        const double half = f < 40 ? 1.0 + 5.0 * f / 40 : 6.0;
+        extent.currentFrame = boxOf({-half, 0, -half}, {half, top, half});
+        extent.box.add(extent.currentFrame);
+        extent.endFrame();
+    }
+    ASSERT_EQ(extent.frames.size(), 150u);
+    const double aspect = 16.0 / 9.0;
+    const ViewCamera cam = autoFrame(extent, 0, 40, aspect);
+    const auto puddle = projectedBox(cam, aspect, boxOf({-6, 0, -6}, {6, 2, 6}));
+    // The puddle, the subject of three quarters of the shot, spans most of the width
+    // (it was about a tenth of it when the whole column was framed) and is fully in view.
+    EXPECT_GT(puddle[1] - puddle[0], 2 * 0.5) << "puddle width, NDC";
+    for (double edge : puddle) EXPECT_LE(std::abs(edge), 0.9 + 1e-6);
+    // Every edge holds the content of at least three quarters of the frames.
+    int held = 0;
+    for (const Bounds3& b : extent.frames) {
+        const auto e = projectedBox(cam, aspect, b);
+        held += e[0] >= -0.9 - 1e-6 && e[1] <= 0.9 + 1e-6 && e[2] >= -0.9 - 1e-6 &&
+                e[3] <= 0.9 + 1e-6;
+    }
+    EXPECT_GE(held, 0.75 * 150 - 1);
+    // And the frame is filled: an edge of the kept content touches the 90% margin.
+    EXPECT_NEAR(std::max(puddle[1], -puddle[0]), 0.9, 0.35);
+}
+
+TEST(AutoFrame, ASplashOnAFewFramesDoesNotShrinkTheSubject) {
+    SceneExtent still, splash;
+    for (int f = 0; f < 100; ++f) {
+        for (SceneExtent* e : {&still, &splash}) {
+            e->currentFrame = boxOf({-3, 0, -3}, {3, 4, 3});
+            if (e == &splash && f >= 50 && f < 60) e->currentFrame.add(Vec3{40, 25, -30});
+            e->endFrame();
+        }
+    }
+    const ViewCamera a = autoFrame(still, 0, 40, 1.5), b = autoFrame(splash, 0, 40, 1.5);
+    EXPECT_NEAR(length(a.position - b.position), 0, 1e-6 * length(a.position - a.target));
+    EXPECT_NEAR(length(a.target - b.target), 0, 1e-6 * length(a.position - a.target));
+    // A box alone fills 90% of the image in its tighter direction, its foot on the ground.
+    const auto e = projectedBox(a, 1.5, boxOf({-3, 0, -3}, {3, 4, 3}));
+    EXPECT_NEAR(std::max(e[1] - e[0], e[3] - e[2]), 1.8, 0.01);
+    EXPECT_NEAR(e[0] + e[1], 0, 0.01);  // centred
+    EXPECT_NEAR(e[2] + e[3], 0, 0.01);
+}
+
+TEST(AutoFrame, FramesReachDownToTheirFootOnTheGround) {
+    SceneExtent extent;
+    for (int f = 0; f < 10; ++f) {
+        extent.currentFrame = boxOf({-1, 10, -1}, {1, 12, 1});  // floating 10 units up
+        extent.endFrame();
+    }
+    const ViewCamera cam = autoFrame(extent, 0, 40, 1.0);
+    const auto ground = projectedBox(cam, 1.0, boxOf({-1, 0, -1}, {1, 0, 1}));
+    EXPECT_GE(ground[2], -0.9 - 1e-6);
+    EXPECT_LE(ground[2], -0.8);  // the foot is at the bottom edge
 }
 
 TEST(AutoFrame, EmptyContentStillGivesAView) {
