@@ -1,7 +1,8 @@
 // Render benchmarks: time per frame at 1280x720 and 1920x1080 for 1e3, 1e5 and 1e6 sphere
 // globules (renderBenchPour) and for meshes of 1e5 and 1e6 triangles (renderBenchBlob),
 // plus the PNG encoding of a frame, a full-HD frame written with and without its EXR
-// (BM_FrameOutput), and 1e6 spheres without occlusion culling. A frame is
+// (BM_FrameOutput), 1e6 spheres without occlusion culling, and frames without the
+// image-based light, ambient occlusion and soft shadows (*PlainLight). A frame is
 // upload, culling, shadow map, drawing, resolve, read-back and sRGB encoding: everything
 // runRenderStage does per frame but reading the cache and writing the PNG. The GL context
 // and shaders are made before timing.
@@ -59,12 +60,22 @@ FrameSetup setupFor(const SceneExtent& extent, int width, int height, const char
     return s;
 }
 
-void spheres(benchmark::State& state, bool culling) {
+/// The light of before physically based shading's extras: no environment (image-based
+/// light), no ambient occlusion, hard shadows. Against the default: what they cost.
+FrameSetup plainLight(FrameSetup s) {
+    s.render.environmentIntensity = 0;
+    s.render.ambientOcclusion = 0;
+    s.render.shadowSoftness = 0;
+    return s;
+}
+
+void spheres(benchmark::State& state, bool culling, bool plain = false) {
     const int height = int(state.range(1)), width = height * 16 / 9;
     const Globules g = renderBenchPour(std::size_t(state.range(0)));
     SceneExtent extent;
     extent.addFrame(g);
-    const FrameSetup setup = setupFor(extent, width, height, "speed");
+    FrameSetup setup = setupFor(extent, width, height, "speed");
+    if (plain) setup = plainLight(setup);
     Renderer renderer(width, height, int(state.range(2)));
     renderer.setOcclusionCulling(culling);
     renderer.drawSpheres(g, setup);  // warm-up: shaders are compiled on first use
@@ -83,20 +94,39 @@ BENCHMARK(BM_SpheresUnculled)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-void BM_Mesh(benchmark::State& state) {
+// The same frames without image-based light, ambient occlusion and soft shadows.
+void BM_SpheresPlainLight(benchmark::State& state) { spheres(state, true, true); }
+BENCHMARK(BM_SpheresPlainLight)
+    ->Args({100000, 1080, 4})
+    ->Args({1000000, 1080, 4})
+    ->ArgNames({"n", "height", "samples"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+void meshFrames(benchmark::State& state, bool plain) {
     const int height = int(state.range(1)), width = height * 16 / 9;
     const TriangleMesh mesh = renderBenchBlob(std::size_t(state.range(0)));
     const MeshView view{mesh.positions.data(), mesh.normals.data(),  mesh.vertexCount(),
                         mesh.triangles.data(), mesh.triangleCount(), true};
     SceneExtent extent;
     extent.addPoints(mesh.positions.data(), mesh.vertexCount());
-    const FrameSetup setup = setupFor(extent, width, height, "constant");
+    FrameSetup setup = setupFor(extent, width, height, "constant");
+    if (plain) setup = plainLight(setup);
     Renderer renderer(width, height, int(state.range(2)));
     renderer.drawMesh(view, setup);
     timeFrames(state, [&] { benchmark::DoNotOptimize(renderer.drawMesh(view, setup)); });
     state.counters["triangles"] = double(mesh.triangleCount());
 }
+
+void BM_Mesh(benchmark::State& state) { meshFrames(state, false); }
 BENCHMARK(BM_Mesh)->Apply([](auto* b) { sizes(b, {100000, 1000000}); });
+
+void BM_MeshPlainLight(benchmark::State& state) { meshFrames(state, true); }
+BENCHMARK(BM_MeshPlainLight)
+    ->Args({1000000, 1080, 4})
+    ->ArgNames({"n", "height", "samples"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 void BM_WritePng(benchmark::State& state) {
     const int height = int(state.range(0)), width = height * 16 / 9;

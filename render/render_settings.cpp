@@ -100,7 +100,7 @@ void RenderSettings::describe(SettingsSection& s) {
              "(water, plastic), 0 = no specular reflection at all");
     s.text("environment", environment,
            "the light all around: a lat-long (equirectangular) HDR OpenEXR file, +y up, its "
-           "middle looking along -z (relative to the working directory); \"\": the procedural "
+           "middle looking along -z (relative to the scene file); \"\": the procedural "
            "sky, its sun glow towards the key light");
     s.number("environment_intensity", environmentIntensity, NumberRange::nonNegative(),
              "multiplies the environment's radiance (image-based diffuse and specular light); "
