@@ -8,6 +8,7 @@
 
 #include "console_reporter.h"
 #include "errors.h"
+#include "farm_command.h"
 #include "figures_command.h"
 #include "globular_version.h"
 #include "run_command.h"
@@ -37,7 +38,9 @@ int main(int argc, char** argv) {
     CLI::App* runCmd = app.add_subcommand("run", "simulate, surface and render a scene");
     runCmd->add_option("scene", run.scene, "scene file (TOML); omitted: the default scene");
     runCmd->add_option("--out,-o", run.outDir, "output directory (default out/<scene name>)");
-    runCmd->add_option("--stages", stages, "comma-separated stages: sim,surface,render")
+    runCmd->add_option("--stages", stages,
+                       "comma-separated stages: sim,surface,render; also plan (the render "
+                       "plan alone) and finish (contact sheet and movie alone)")
         ->capture_default_str();
     runCmd->add_option("--frames", run.frames, "frame range A-B for surface and render");
     runCmd->add_option("--threads", run.threads, "worker threads (0 = all cores)")
@@ -59,6 +62,29 @@ int main(int argc, char** argv) {
                            "the paper's scenes (default scenes/paper, here or in the source)");
     figuresCmd->add_flag("--quiet,-q", quiet, "only warnings and errors");
 
+    globular::FarmOptions farm;
+    std::string farmStatus, farmResubmit;
+    CLI::App* farmCmd = app.add_subcommand(
+        "farm", "send a shot to a Slurm cluster: batch scripts for the simulation, surface and "
+                "render arrays over frame chunks, the render plan and the contact sheet and movie "
+                "(README, Rendering on a farm)");
+    farmCmd->add_option("scene", farm.scene, "scene file (TOML)");
+    farmCmd->add_option("--out,-o", farm.outDir, "output directory, on storage every node sees");
+    farmCmd->add_option("--set", farm.overrides, "override a scene key, as for run");
+    farmCmd->add_option("--chunk", farm.chunk, "frames per array task")->capture_default_str();
+    farmCmd->add_option("--max-running", farm.maxRunning,
+                        "array tasks running at once (Slurm's %N throttle; 0 = no limit)")
+        ->capture_default_str();
+    farmCmd->add_option("--partition", farm.partition, "Slurm partition (sbatch --partition)");
+    farmCmd->add_option("--account", farm.account, "Slurm account (sbatch --account)");
+    farmCmd->add_option("--time", farm.timeLimit, "time limit of each job (sbatch --time)");
+    farmCmd->add_flag("--dry-run", farm.dryRun, "print the batch scripts; submit nothing");
+    farmCmd->add_option("--status", farmStatus,
+                        "report DIR's progress from its files, squeue and sacct");
+    farmCmd->add_option("--resubmit", farmResubmit,
+                        "resubmit the chunks of DIR that failed or are missing");
+    farmCmd->add_flag("--quiet,-q", quiet, "only warnings and errors");
+
     CLI::App* keysCmd = app.add_subcommand(
         "keys", "print every scene key with its default and meaning (Markdown)");
 
@@ -72,6 +98,17 @@ int main(int argc, char** argv) {
     try {
         if (keysCmd->parsed()) std::fputs(globular::sceneKeysMarkdown().c_str(), stdout);
         if (figuresCmd->parsed()) globular::runFigures(figures, reporter);
+        if (farmCmd->parsed()) {
+            farm.status = !farmStatus.empty();
+            farm.resubmit = !farmResubmit.empty();
+            if (farm.status || farm.resubmit) {
+                if (!farm.outDir.empty()) {
+                    throw globular::SceneError("farm: --status and --resubmit take DIR, not --out");
+                }
+                farm.outDir = farm.status ? farmStatus : farmResubmit;
+            }
+            globular::runFarm(farm, reporter);
+        }
         if (runCmd->parsed()) {
             run.stages.clear();
             std::stringstream list(stages);

@@ -10,3 +10,11 @@ add_dependencies(resume_test globular)
 globular_test(reliability_test SOURCES reliability_test.cpp
               LIBS globular_surface OpenVDB::openvdb)
 add_dependencies(reliability_test globular)
+# Issue 17: `globular farm`'s batch scripts (no Slurm needed), and the shot on a local
+# one-node Slurm (scripts/local_slurm.sh; skipped where Slurm is not installed).
+globular_test(farm_scripts_test SOURCES farm_scripts_test.cpp farm_command_test.cpp
+              LIBS globular_cli)
+add_test(NAME FarmSlurm.SplitShotMatchesLocalRunAndResubmits
+         COMMAND ${PROJECT_SOURCE_DIR}/tests/farm_slurm_test.sh $<TARGET_FILE:globular>)
+set_tests_properties(FarmSlurm.SplitShotMatchesLocalRunAndResubmits PROPERTIES
+                     LABELS slurm SKIP_RETURN_CODE 77 TIMEOUT 240 RUN_SERIAL TRUE)
