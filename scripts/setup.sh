@@ -6,6 +6,8 @@
 #   BUILD_DIR=x BUILD_TYPE=Debug SANITIZE=ON scripts/setup.sh
 #   WITH_PEERS=1 scripts/setup.sh   also what the benchmarks use: the peers (lammps,
 #                                   hyperfine, ffmpeg) and jq, time
+#   WITH_SLURM=1 scripts/setup.sh   also Debian's Slurm and munge, for the farm test on a
+#                                   one-node cluster (scripts/local_slurm.sh; ctest -L slurm)
 set -euo pipefail
 
 packages=(
@@ -20,6 +22,9 @@ packages=(
 )
 if [[ "${WITH_PEERS:-0}" == 1 ]]; then
     packages+=(lammps hyperfine ffmpeg jq time)
+fi
+if [[ "${WITH_SLURM:-0}" == 1 ]]; then
+    packages+=(slurm-wlm munge)
 fi
 
 missing=()
