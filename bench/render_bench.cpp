@@ -176,6 +176,38 @@ BENCHMARK(BM_FrameOutput)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+// The liquid look at 1920x1080, 4 samples: render.mode = "fluid" straight from the
+// globules of the pour (splatting, smoothing, thickness and shading), and a mesh drawn
+// as a liquid (its thickness pass, then its front faces refracting the ground).
+void BM_Fluid(benchmark::State& state) {
+    const int height = 1080, width = 1920;
+    const Globules g = renderBenchPour(std::size_t(state.range(0)));
+    SceneExtent extent;
+    extent.addFrame(g);
+    const FrameSetup setup = setupFor(extent, width, height, "constant");
+    Renderer renderer(width, height, 4);
+    renderer.drawFluid(g, setup);
+    timeFrames(state, [&] { benchmark::DoNotOptimize(renderer.drawFluid(g, setup)); });
+    state.counters["globules"] = double(g.size());
+}
+BENCHMARK(BM_Fluid)->Arg(100000)->Arg(1000000)->ArgName("n")->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_LiquidMesh(benchmark::State& state) {
+    const int height = 1080, width = 1920;
+    const TriangleMesh mesh = renderBenchBlob(std::size_t(state.range(0)));
+    const MeshView view{mesh.positions.data(), mesh.normals.data(),  mesh.vertexCount(),
+                        mesh.triangles.data(), mesh.triangleCount(), true};
+    SceneExtent extent;
+    extent.addPoints(mesh.positions.data(), mesh.vertexCount());
+    FrameSetup setup = setupFor(extent, width, height, "constant");
+    setup.liquidSurface = true;
+    Renderer renderer(width, height, 4);
+    renderer.drawMesh(view, setup);
+    timeFrames(state, [&] { benchmark::DoNotOptimize(renderer.drawMesh(view, setup)); });
+    state.counters["triangles"] = double(mesh.triangleCount());
+}
+BENCHMARK(BM_LiquidMesh)->Arg(1000000)->ArgName("n")->Unit(benchmark::kMillisecond)->UseRealTime();
+
 }  // namespace
 }  // namespace globular
 

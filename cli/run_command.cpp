@@ -138,6 +138,9 @@ void runScene(const RunOptions& options, Reporter& reporter) {
         job.fps = scene.simulation.fps;
         job.colliders = scene.colliderScene();
         job.materialColors = materialColors;
+        for (const MaterialSettings& material : materials) {
+            job.materialOptics.push_back(liquidOptics(material));
+        }
         job.materialLooks = materialLooks;
         // Like the scene's other files, the environment is found beside the scene.
         if (!job.render.environment.empty() &&

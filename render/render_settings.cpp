@@ -76,9 +76,10 @@ void checkLight(const LightSettings& l, const KeyName& name) {
 void RenderSettings::describe(SettingsSection& s) {
     s.integer("width", width, 16, 16384, "image width, pixels");
     s.integer("height", height, 16, 16384, "image height, pixels");
-    s.choice("mode", mode, {"spheres", "surface"},
+    s.choice("mode", mode, {"spheres", "surface", "fluid"},
              "spheres: each globule a shaded sphere of its radius; surface: the surfacing "
-             "stage's mesh");
+             "stage's mesh (a liquid when every [material] looks liquid); fluid: a liquid "
+             "surface straight from the globules, in screen space (no surface stage)");
     s.integer("samples", samples, 1, 16, "multisample anti-aliasing samples per pixel (1 = off)");
     s.choice("color_by", colorBy, {"constant", "speed", "height", "material", "temperature"},
              "colour by the constant color, by speed or height through a colour ramp, by "
@@ -140,6 +141,9 @@ void RenderSettings::describe(SettingsSection& s) {
            "also write frames/frame.NNNN.exr: half-float linear RGBA (premultiplied), float Z "
            "(distance from the eye), half N.x N.y N.z (world-space normal) and, for spheres, "
            "forward.u forward.v (screen motion over one frame, pixels)");
+    s.number("fluid_smoothing", fluidSmoothing, {0, 20},
+             "mode = \"fluid\": reach of the filter that smooths the globules' spheres into "
+             "one surface, in globule radii (0 = the bare spheres)");
     s.flag("transparent", transparent,
            "transparent background: alpha 0 where nothing is drawn (PNG RGBA, EXR A); the "
            "ground, when drawn, fades into alpha instead of the background colour");

@@ -16,7 +16,7 @@ class SettingsSection;
 struct RenderSettings {
     int64_t width = 1280;                ///< pixels
     int64_t height = 720;                ///< pixels
-    std::string mode = "spheres";        ///< spheres | surface
+    std::string mode = "spheres";        ///< spheres | surface | fluid
     int64_t samples = 4;                 ///< multisample anti-aliasing samples per pixel, 1 = off
     std::string colorBy = "constant";    ///< constant | speed | height | material | temperature
     Vec3 color{0.16, 0.42, 0.82};        ///< base colour (sRGB), used by color_by = constant
@@ -45,6 +45,7 @@ struct RenderSettings {
     int64_t pngBits = 8;                 ///< bits per channel of the PNG frames: 8 or 16
     bool exr = false;                    ///< also write frames/frame.NNNN.exr (exr_image.h)
     bool transparent = false;            ///< background alpha 0 (PNG RGBA, EXR A)
+    double fluidSmoothing = 2;           ///< mode fluid: the depth filter's reach, globule radii
     bool motionBlur = false;             ///< accumulate sub-frames over the shutter (sub_frames.h)
     double shutter = 0.5;                ///< open time, fraction of 1/fps, centred on the frame
     int64_t motionSamples = 8;           ///< sub-frames accumulated (motion blur, depth of field)

@@ -168,6 +168,11 @@ FrameSetup frameSetup(const RenderJob& job, const RenderPlan& plan) {
     setup.groundHeight = job.groundHeight;
     setup.materialColors = job.materialColors;
     setup.materialLooks = job.materialLooks;
+    setup.materialOptics = job.materialOptics;
+    // A mesh has one look: liquid when every material is one.
+    setup.liquidSurface = job.render.mode == "surface" && !job.materialOptics.empty() &&
+                          std::all_of(job.materialOptics.begin(), job.materialOptics.end(),
+                                      [](const LiquidOptics& o) { return o.liquid; });
     setup.frameSeconds = job.fps > 0 ? 1.0 / job.fps : 0;
     setup.camera = plan.camera;
     setup.content = plan.content;
@@ -326,7 +331,8 @@ void runRenderStage(const RenderJob& job, const StageContext& ctx) {
                              cacheVdbPath(ctx.outDir, f));
             checkRenderMemory(job.render, estimateSphereBytes(globules.size()), available,
                               "frame " + std::to_string(f));
-            image = renderer.drawSpheres(globules, frameSetup);
+            image = job.render.mode == "fluid" ? renderer.drawFluid(globules, frameSetup)
+                                               : renderer.drawSpheres(globules, frameSetup);
         }
         const fs::path png = framePngPath(ctx.outDir, f);
         if (job.render.pngBits == 16) {

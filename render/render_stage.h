@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "collider_solid.h"
+#include "liquid_optics.h"
 #include "render_plan.h"
 #include "render_settings.h"
 #include "stage_context.h"
@@ -26,6 +27,9 @@ struct RenderJob {
     /// [simulation] frames: the animation 1..N that the render plan measures, whatever
     /// range is drawn. 0: the requested range is the whole animation.
     int animationFrames = 0;
+    /// The liquid look of each material, by index (mode = fluid; mode = surface draws a
+    /// liquid when all are liquid). Empty: the surface opaque, the fluid the default liquid.
+    std::vector<LiquidOptics> materialOptics = {};
 };
 
 /// Renders frames ctx.firstFrame..ctx.lastFrame of ctx.outDir:

@@ -13,6 +13,8 @@
 #include "gl_context.h"
 #include "gl_objects.h"
 #include "ground_pass.h"
+#include "fluid_pass.h"
+#include "liquid_mesh_pass.h"
 #include "mesh_pass.h"
 #include "occlusion_pass.h"
 #include "shadow_map.h"
@@ -25,6 +27,16 @@ namespace globular {
 using detail::FrameUniforms;
 
 namespace {
+
+/// Whether a frame's content is drawn as a liquid (it has liquid() and says so).
+template <typename Content>
+bool isLiquid(const Content& content) {
+    if constexpr (requires { content.liquid(); }) {
+        return content.liquid();
+    } else {
+        return false;
+    }
+}
 
 /// The content box, reaching down to the ground so shadows on it fall inside the map.
 Bounds3 withGround(Bounds3 box, double groundHeight) {
@@ -102,6 +114,8 @@ struct Renderer::Impl {
     detail::ShadowMap shadowMap;
     std::optional<detail::SpherePass> spheres;  // built on first use: a mesh-only run
     std::optional<detail::MeshPass> mesh;       // compiles no sphere shaders, and so on
+    std::optional<detail::FluidPass> fluid;     // the liquid look (below)
+    std::optional<detail::LiquidMeshPass> liquidMesh;
     std::vector<detail::MeshPass> props;        // one per prop of the set
     detail::GroundPass ground;
     detail::EnvironmentLight environment;
@@ -285,17 +299,22 @@ struct Renderer::Impl {
         }
         target.bindAndClear(srgbToLinear(s.render.background), s.render.transparent ? 0 : 1);
         shadowMap.bindForSampling();
-        // Content first: the ground behind it is then rejected before shading.
-        content.draw(f);
+        // Content first: the ground behind it is then rejected before shading. A liquid
+        // last, as it refracts what lies behind it.
+        if (!isLiquid(content)) content.draw(f);
         for (std::size_t k = 0; k < s.props.size(); ++k) {
             using Cull = detail::MeshPass::Cull;
             props[k].draw(grey, s.props[k].seeThrough ? Cull::None : Cull::Back);
         }
         if (s.render.ground) ground.draw(f, look);
         occlude(f, s, box);
+        if (isLiquid(content)) content.draw(f);
         target.read(frame, f.frameSeconds > 0);
         gl::checkErrors("drawing a frame");
     }
+
+    Image drawFluid(const Globules& globules, const FrameSetup& s);
+    Image drawLiquidMesh(const MeshView& mesh, const FrameSetup& s);
 };
 
 Renderer::Renderer(int width, int height, int samples, int shadowMapSize, bool passes) {
@@ -368,6 +387,7 @@ Image Renderer::drawSpheres(const Globules& globules, const FrameSetup& setup) {
 Image Renderer::drawMesh(const MeshView& mesh, const FrameSetup& setup) {
     makeGlContextCurrent(mImpl->backend);
     Impl& im = *mImpl;
+    if (setup.liquidSurface) return im.drawLiquidMesh(mesh, setup);
     if (!im.mesh) im.mesh.emplace();
     FrameSetup s = setup;
     if (s.render.colorBy == "temperature" && !mesh.values && mesh.vertexCount > 0) {
@@ -393,6 +413,116 @@ Image Renderer::drawMesh(const MeshView& mesh, const FrameSetup& setup) {
     return im.accumulate(s, [&](const FrameSetup& sub, double) {
         im.draw(sub, own.box, Content{*im.mesh, mesh});
     });
+}
+
+Image Renderer::drawFluid(const Globules& globules, const FrameSetup& setup) {
+    makeGlContextCurrent(mImpl->backend);
+    return mImpl->drawFluid(globules, setup);
+}
+
+namespace {
+
+/// Where a liquid's refracted rays end, and what it reflects while the shared shading
+/// library has no environment.
+detail::LiquidLook liquidLook(const FrameSetup& s) {
+    return {opticsOf(s.materialOptics, 0).ior, s.render.ground, s.groundHeight,
+            srgbToLinear(s.render.background)};
+}
+
+/// The globules of materials drawn opaque (spheres among the liquid), none when all are
+/// liquid.
+Globules opaqueGlobules(const Globules& g, const std::vector<LiquidOptics>& optics) {
+    Globules opaque;
+    const bool any = std::any_of(optics.begin(), optics.end(),
+                                 [](const LiquidOptics& o) { return !o.liquid; });
+    if (!any) return opaque;
+    std::vector<uint32_t> keep;
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        if (!opticsOf(optics, g.materialOf(i)).liquid) keep.push_back(uint32_t(i));
+    }
+    auto pick = [&](const auto& from, auto& into) {
+        if (from.size() != g.size()) return;
+        into.reserve(keep.size());
+        for (uint32_t i : keep) into.push_back(from[i]);
+    };
+    pick(g.px, opaque.px);
+    pick(g.py, opaque.py);
+    pick(g.pz, opaque.pz);
+    pick(g.vx, opaque.vx);
+    pick(g.vy, opaque.vy);
+    pick(g.vz, opaque.vz);
+    pick(g.radius, opaque.radius);
+    pick(g.mass, opaque.mass);
+    pick(g.id, opaque.id);
+    pick(g.material, opaque.material);
+    pick(g.temperature, opaque.temperature);
+    return opaque;
+}
+
+}  // namespace
+
+Image Renderer::Impl::drawFluid(const Globules& globules, const FrameSetup& setup) {
+    if (!fluid) fluid.emplace();
+    FrameSetup s = setup;
+    SceneExtent own;
+    if (s.content.empty || (s.render.colorBy != "constant" && s.ramp.empty)) own.addFrame(globules);
+    if (s.ramp.empty) s.ramp = s.render.colorBy == "speed" ? own.speed : own.height;
+    detail::FluidLook look{liquidLook(s), s.materialOptics, s.render.fluidSmoothing};
+    struct Content {
+        Impl& im;
+        const Globules& globules;
+        const Globules& opaque;  // drawn as spheres, behind the liquid's refraction
+        const detail::FluidLook& look;
+        bool spheres() const { return false; }
+        bool liquid() const { return true; }
+        void prepare(const FrameUniforms& f) {
+            im.fluid->upload(globules);
+            if (!opaque.empty()) im.spheres->upload(opaque, detail::SpherePass::Value::None, f);
+        }
+        void shadow(const FrameUniforms& f) {
+            im.fluid->drawShadow(f);
+            if (!opaque.empty()) im.spheres->drawShadow(f);
+        }
+        void draw(const FrameUniforms& f) {
+            if (!opaque.empty()) {
+                im.spheres->drawVisibility(f, im.target);
+                im.spheres->drawShading(f, im.target);
+            }
+            im.fluid->draw(f, look);
+        }
+    };
+    const Globules opaque = opaqueGlobules(globules, s.materialOptics);
+    if (!opaque.empty() && !spheres) spheres.emplace(samples);
+    if (spheres) spheres->setCulling(culling);
+    return accumulate(s, [&](const FrameSetup& sub, double seconds) {
+        if (seconds == 0) {
+            draw(sub, own.box, Content{*this, globules, opaque, look});
+        } else {
+            const Globules moved = movedBy(globules, seconds);
+            const Globules movedOpaque = movedBy(opaque, seconds);
+            draw(sub, own.box, Content{*this, moved, movedOpaque, look});
+        }
+    });
+}
+
+Image Renderer::Impl::drawLiquidMesh(const MeshView& mesh, const FrameSetup& setup) {
+    if (!liquidMesh) liquidMesh.emplace();
+    FrameSetup s = setup;
+    SceneExtent own;
+    if (s.content.empty) own.addPoints(mesh.positions, mesh.vertexCount);
+    struct Content {
+        detail::LiquidMeshPass& pass;
+        const MeshView& mesh;
+        detail::LiquidLook look;
+        LiquidOptics optics;
+        bool spheres() const { return false; }
+        bool liquid() const { return true; }
+        void prepare(const FrameUniforms&) { pass.upload(mesh); }
+        void shadow(const FrameUniforms& f) { pass.drawShadow(f); }
+        void draw(const FrameUniforms& f) { pass.draw(f, look, optics); }
+    };
+    const Content content{*liquidMesh, mesh, liquidLook(s), opticsOf(s.materialOptics, 0)};
+    return accumulate(s, [&](const FrameSetup& sub, double) { draw(sub, own.box, Content(content)); });
 }
 
 void Renderer::setOcclusionCulling(bool on) { mImpl->culling = on; }

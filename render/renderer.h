@@ -10,6 +10,7 @@
 #include "camera.h"
 #include "globules.h"
 #include "linear_frame.h"
+#include "liquid_optics.h"
 #include "mesh.h"
 #include "mesh_view.h"
 #include "png_image.h"
@@ -48,6 +49,12 @@ struct FrameSetup {
     /// Seconds between frames (1/fps): the interval of the motion pass (renderers made with
     /// passes, spheres only). 0: no motion pass.
     double frameSeconds = 0;
+    /// How each material looks as a liquid, by index (drawFluid, and drawMesh with
+    /// liquidSurface). Missing entries: the default liquid (liquid_optics.h).
+    std::vector<LiquidOptics> materialOptics;
+    /// drawMesh draws the mesh as a liquid of material 0's optics (transmission,
+    /// absorption by thickness, Fresnel reflection) instead of an opaque surface.
+    bool liquidSurface = false;
 };
 
 class Renderer {
@@ -74,6 +81,10 @@ class Renderer {
     /// @throw Error when a triangle index is out of range, or for color_by = temperature
     ///        without mesh.values.
     Image drawMesh(const MeshView& mesh, const FrameSetup& setup);
+    /// render.mode = "fluid": the globules of liquid materials (setup.materialOptics) as
+    /// one smooth liquid surface in screen space (fluid_pass.h), refracting and reflecting;
+    /// those of opaque materials as spheres. Non-finite globules are skipped.
+    Image drawFluid(const Globules& globules, const FrameSetup& setup);
 
     /// Occlusion culling of hidden spheres before drawing (on by default). The image is
     /// the same either way; off is for tests and measurements.

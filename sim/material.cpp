@@ -33,6 +33,19 @@ void MaterialSettings::describe(SettingsSection& s) {
     s.number("metallic", metallic, NumberRange::between(0, 1),
              "render: 0 = dielectric (plastic, water: 4% reflectance, the rest diffused), 1 = "
              "metal (reflects its base colour, diffuses nothing)");
+    s.choice("look", look, {"auto", "liquid", "opaque"},
+             "render: how mode = \"surface\" and \"fluid\" draw it; liquid: transmission "
+             "that refracts what lies behind, Beer-Lambert absorption and Fresnel reflection; "
+             "opaque: a shaded solid (fluid mode: spheres); auto: liquid for preset = "
+             "\"liquid\", else opaque");
+    s.vec3("absorption", absorption, NumberRange::nonNegative(),
+           "render (liquid look): absorption coefficient per world unit at density 1, linear "
+           "RGB; light crossing a depth d keeps exp(-absorption * density * d) of each channel "
+           "(absorbing red most gives a blue liquid)");
+    s.number("density", density, NumberRange::nonNegative(),
+             "render (liquid look): multiplies absorption; 0 = perfectly clear");
+    s.number("ior", ior, NumberRange::between(1, 3),
+             "render (liquid look): index of refraction (water 1.33)");
     s.number("heat_capacity", heatCapacity, NumberRange::positive(),
              "thermal: heat capacity per unit mass");
     s.number("conductivity", conductivity, NumberRange::nonNegative(),

@@ -45,6 +45,13 @@ struct MaterialSettings : ForceConstants {
     double roughness = 0.35;  ///< render: perceptual roughness in [0, 1] (surface_look.h)
     double metallic = 0;      ///< render: 0 = dielectric, 1 = metal
 
+    // How the renderer draws it as a liquid (render/liquid_optics.h). Light crossing a
+    // depth d of it keeps exp(-absorption * density * d) of each linear RGB channel.
+    std::string look = "auto";  ///< auto (liquid for preset = liquid) | liquid | opaque
+    Vec3 absorption{0.30, 0.09, 0.035};  ///< per world unit at density 1, linear RGB
+    double density = 1.0;                ///< scales absorption; 0 = clear
+    double ior = 1.33;                   ///< index of refraction
+
     // Heat. A globule's heat capacity is its mass times heatCapacity.
     double heatCapacity = 1.0;  ///< per unit mass
     double conductivity = 1.0;  ///< heat flow between touching globules per degree of difference

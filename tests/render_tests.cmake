@@ -16,6 +16,7 @@ globular_test(renderer_tests
     SOURCES renderer_test.cpp
             render_golden_test.cpp
             render_output_test.cpp
+            liquid_render_test.cpp
             motion_blur_test.cpp
             lighting_test.cpp
             gl_backend_test.cpp

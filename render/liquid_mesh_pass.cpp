@@ -1,0 +1,115 @@
+#include "liquid_mesh_pass.h"
+
+#include <algorithm>
+#include <string>
+
+#include "errors.h"
+#include "liquid_shaders.h"
+#include "shaders.h"
+
+namespace globular::detail {
+
+LiquidMeshPass::LiquidMeshPass()
+    : mThickness("liquid mesh thickness", shaders::liquidMeshVertex(),
+                 shaders::liquidMeshThicknessFragment()),
+      mShade("liquid mesh", shaders::liquidMeshVertex(), shaders::liquidMeshFragment()),
+      mShadow("liquid mesh shadow", shaders::meshShadowVertex(), shaders::depthOnlyFragment()),
+      mVertexArray(gl::makeVertexArray()),
+      mEmpty(gl::makeVertexArray()),
+      mPositions(gl::makeBuffer()),
+      mNormals(gl::makeBuffer()),
+      mIndices(gl::makeBuffer()) {}
+
+void LiquidMeshPass::upload(const MeshView& mesh) {
+    const std::size_t indexCount = mesh.triangleCount * 3;
+    if (indexCount > 0) {
+        const uint32_t largest = *std::max_element(mesh.triangles, mesh.triangles + indexCount);
+        if (largest >= mesh.vertexCount) {
+            throw Error("render: mesh triangle index " + std::to_string(largest) +
+                        " is out of range (" + std::to_string(mesh.vertexCount) + " vertices)");
+        }
+    }
+    mIndexCount = indexCount;
+    mClosed = mesh.closed;
+    glBindVertexArray(mVertexArray.id());
+    const auto bytes = GLsizeiptr(mesh.vertexCount * 3 * sizeof(float));
+    glBindBuffer(GL_ARRAY_BUFFER, mPositions.id());
+    glBufferData(GL_ARRAY_BUFFER, bytes, mesh.positions, GL_STREAM_DRAW);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glEnableVertexAttribArray(0);
+    if (mesh.normals) {
+        glBindBuffer(GL_ARRAY_BUFFER, mNormals.id());
+        glBufferData(GL_ARRAY_BUFFER, bytes, mesh.normals, GL_STREAM_DRAW);
+        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+        glEnableVertexAttribArray(1);
+    } else {
+        glDisableVertexAttribArray(1);
+        glVertexAttrib3f(1, 0, 0, 0);  // the fragment shader then uses face normals
+    }
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mIndices.id());
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indexCount * sizeof(uint32_t)), mesh.triangles,
+                 GL_STREAM_DRAW);
+    glBindVertexArray(0);
+    gl::checkErrors("uploading the liquid mesh");
+}
+
+void LiquidMeshPass::drawShadow(const FrameUniforms& f) const {
+    if (mIndexCount == 0) return;
+    glUseProgram(mShadow.id());
+    setMat4(mShadow, "uLightViewProj", f.lightViewProj);
+    glBindVertexArray(mVertexArray.id());
+    glDrawElements(GL_TRIANGLES, GLsizei(mIndexCount), GL_UNSIGNED_INT, nullptr);
+    glBindVertexArray(0);
+}
+
+void LiquidMeshPass::draw(const FrameUniforms& f, const LiquidLook& look,
+                          const LiquidOptics& optics) {
+    if (mIndexCount == 0) return;
+    GLint frame = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &frame);
+    mBehind.capture(f.width, f.height);
+
+    // Thickness: every face, no depth test, eye distances added with their sign.
+    mDepth.bind(f.width, f.height, GL_R32F, false, false);
+    const float none[] = {0, 0, 0, 0};
+    glClearBufferfv(GL_COLOR, 0, none);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glBlendEquation(GL_FUNC_ADD);
+    glFrontFace(GL_CCW);
+    glUseProgram(mThickness.id());
+    setMat4(mThickness, "uViewProj", f.viewProj);
+    setVec3(mThickness, "uEye", f.eye);
+    glBindVertexArray(mVertexArray.id());
+    glDrawElements(GL_TRIANGLES, GLsizei(mIndexCount), GL_UNSIGNED_INT, nullptr);
+    glDisable(GL_BLEND);
+
+    // The front faces, shaded as liquid into the frame.
+    glBindFramebuffer(GL_FRAMEBUFFER, GLuint(frame));
+    glViewport(0, 0, f.width, f.height);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glUseProgram(mShade.id());
+    applyFrameUniforms(mShade, f);
+    LiquidLook own = look;
+    own.ior = optics.ior;
+    applyLiquidUniforms(mShade, f, own);
+    setVec3(mShade, "uMeshSigma", optics.sigma);
+    glUniform1i(mShade.uniform("uThickness"), 2);
+    mBehind.bind(1);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, mDepth.texture.id());
+    glActiveTexture(GL_TEXTURE0);
+    if (mClosed) {
+        glCullFace(GL_BACK);
+        glEnable(GL_CULL_FACE);
+    }
+    glDrawElements(GL_TRIANGLES, GLsizei(mIndexCount), GL_UNSIGNED_INT, nullptr);
+    glDisable(GL_CULL_FACE);
+    glBindVertexArray(0);
+    gl::checkErrors("drawing the liquid mesh");
+}
+
+}  // namespace globular::detail

@@ -1,0 +1,357 @@
+// GLSL of the liquid look (liquid_shaders.h).
+#include "liquid_shaders.h"
+
+#include "shaders.h"
+
+namespace globular::shaders {
+
+namespace {
+
+// The eye ray through a window position (as the sphere passes compute it).
+const char* const kRay = R"(
+uniform vec3 uCamForward;  // unit view direction
+uniform vec3 uCamRight;    // scaled so that +-1 reaches the image's right and left edges
+uniform vec3 uCamUp;       // ... and its top and bottom edges
+uniform vec2 uViewport;    // pixels
+vec3 cameraRay(vec2 windowPosition) {
+    vec2 ndc = windowPosition / uViewport * 2.0 - 1.0;
+    return normalize(uCamForward + ndc.x * uCamRight + ndc.y * uCamUp);
+}
+)";
+
+// Used only while the shared library has no environment (shaders.cpp): the sky as the
+// background colour, darker below the horizon where the ground is.
+const char* const kEnvironmentFallback = R"(
+uniform vec3 uLiquidSky;  // linear
+vec3 environmentRadiance(vec3 worldDirection, float roughness) {
+    return uLiquidSky * mix(0.45, 1.0, smoothstep(-0.1, 0.1, worldDirection.y));
+}
+)";
+
+// The liquid's look at a point of its front surface.
+const char* const kLiquid = R"(
+uniform sampler2D uBehind;  // what lies behind the liquid: the frame drawn so far, resolved
+                            // (linear, premultiplied), unit 1
+uniform float uIor;         // index of refraction
+uniform int uGroundDrawn;   // the ground plane is in uBehind
+uniform float uGroundHeight;
+uniform mat4 uBehindViewProj;
+
+// What uBehind shows at the pixel of a world point.
+vec4 behindAt(vec3 world) {
+    vec4 c = uBehindViewProj * vec4(world, 1.0);
+    vec2 uv = c.w > 0.0 ? c.xy / c.w * 0.5 + 0.5 : vec2(0.5);
+    return textureLod(uBehind, clamp(uv, vec2(0.0), vec2(1.0)), 0.0);
+}
+
+// Schlick's approximation of the Fresnel reflectance of a dielectric of index ior.
+float schlick(float cosine, float ior) {
+    float f0 = (ior - 1.0) / (ior + 1.0);
+    f0 *= f0;
+    return f0 + (1.0 - f0) * pow(1.0 - clamp(cosine, 0.0, 1.0), 5.0);
+}
+
+// The liquid seen along `dir` (unit, from the eye) where the ray enters it at `p`, normal
+// `n` (unit, towards the eye); `depth`: the eye ray's length inside it; `sigma`:
+// absorption per world unit. Returns premultiplied colour and coverage.
+vec4 liquidShade(vec3 p, vec3 n, vec3 dir, float depth, vec3 sigma) {
+    float cosine = clamp(-dot(dir, n), 0.0, 1.0);
+    float fresnel = schlick(cosine, uIor);
+    vec3 r = refract(dir, n, 1.0 / uIor);
+    float path = max(depth, 0.0);
+    vec3 far;
+    float toGround = uGroundDrawn != 0 && r.y < 0.0 ? max((uGroundHeight - p.y) / r.y, 0.0) : -1.0;
+    if (toGround >= 0.0 && toGround <= path) {
+        // The refracted ray meets the floor inside the liquid: exact for the ground.
+        path = toGround;
+        far = p + r * toGround;
+    } else {
+        // It leaves through the back. The back's normal is taken as the front's mirrored
+        // across the plane facing the eye (exact for a slab, a sphere or a cylinder seen
+        // side-on), and refracts the ray again: a slab shifts what lies behind, a drop or
+        // a stream bends it as a lens does. Then on to the ground, or what shows there.
+        vec3 exit = p + r * path;
+        vec3 back = n - 2.0 * dot(n, dir) * dir;  // outward, facing away from the eye
+        vec3 leaving = refract(r, -back, uIor);
+        if (dot(leaving, leaving) == 0.0) leaving = reflect(r, -back);  // total internal reflection
+        float beyond = uGroundDrawn != 0 && leaving.y < 0.0 ? (uGroundHeight - exit.y) / leaving.y : -1.0;
+        far = exit + leaving * (beyond > 0.0 ? beyond : max(4.0 * path, 1e-3));
+    }
+    vec4 behind = behindAt(far);
+    vec3 transmittance = exp(-sigma * path);
+    vec3 color = (1.0 - fresnel) * transmittance * behind.rgb +
+                 fresnel * environmentRadiance(reflect(dir, n), 0.02);
+    // Glints of the lights: a sharp normalised Blinn-Phong lobe weighted by Fresnel.
+    const float kShininess = 600.0;
+    for (int i = 0; i < uLightCount; ++i) {
+        float ndl = dot(n, uLightToward[i]);
+        if (ndl <= 0.0) continue;
+        vec3 h = normalize(uLightToward[i] - dir);
+        float lobe = (kShininess + 8.0) / (8.0 * PI_LIQUID) * pow(max(dot(n, h), 0.0), kShininess);
+        float visible = i == 0 ? keyLightVisibility(p, n) : 1.0;
+        color += visible * uLightRadiance[i] * schlick(dot(h, -dir), uIor) * lobe * ndl;
+    }
+    float through = (1.0 - fresnel) * dot(transmittance, vec3(1.0 / 3.0));
+    return vec4(color, 1.0 - through * (1.0 - behind.a));
+}
+)";
+
+std::string liquidFragment(const std::string& body) {
+    const std::string shared = fragment("");
+    const bool hasEnvironment = shared.find("vec3 environmentRadiance(") != std::string::npos;
+    return fragment(std::string(kRay) + (hasEnvironment ? "" : kEnvironmentFallback) +
+                    "const float PI_LIQUID = 3.14159265358979;\n" + kLiquid + body);
+}
+
+const char* const kBadGlobule = R"(
+bool drawable(vec3 c, float r) {
+    return r > 0.0 && !isinf(r) && !any(isnan(c)) && !any(isinf(c));
+}
+const vec4 kNowhere = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: not drawn
+)";
+
+}  // namespace
+
+std::string fullScreenVertex() {
+    return version() + R"(
+void main() {
+    vec2 corner = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);
+    gl_Position = vec4(corner, 0.0, 1.0);
+}
+)";
+}
+
+std::string fluidPointVertex() {
+    return version() + kBadGlobule + R"(
+layout(location = 1) in float aX;
+layout(location = 2) in float aY;
+layout(location = 3) in float aZ;
+layout(location = 4) in float aRadius;
+layout(location = 5) in uint aMaterial;
+uniform mat4 uView;
+uniform mat4 uViewProj;
+uniform vec2 uFocalPixels;  // pixels per unit of x/depth and y/depth
+uniform float uNear;
+uniform float uMaxSprite;   // pixels
+uniform vec3 uSigma[16];    // absorption per world unit by material
+uniform int uLiquid[16];    // 0: the material is drawn opaque, not here
+flat out vec3 vCenter;
+flat out float vRadius;
+flat out vec3 vSigma;
+
+// As the sphere sprites (sphere_shaders.cpp): half the projection's extent along an axis.
+float axisHalfExtent(float a, float depth, float r) {
+    float c = a / depth;
+    float tanAlpha = r / sqrt(max(a * a + depth * depth - r * r, 1e-30));
+    float denominator = 1.0 - abs(c) * tanAlpha;
+    return denominator > 0.02 ? tanAlpha * (1.0 + c * c) / denominator : 1e9;
+}
+
+void main() {
+    vec3 c = vec3(aX, aY, aZ);
+    int material = int(min(aMaterial, 15u));
+    vCenter = c;
+    vRadius = aRadius;
+    vSigma = uSigma[material];
+    vec3 v = (uView * vec4(c, 1.0)).xyz;
+    float depth = -v.z;
+    float size = 1e9;
+    if (uLiquid[material] != 0 && drawable(c, aRadius) && depth - aRadius > uNear) {
+        size = 2.0 * max(axisHalfExtent(v.x, depth, aRadius) * uFocalPixels.x,
+                         axisHalfExtent(v.y, depth, aRadius) * uFocalPixels.y) + 1.0;
+    }
+    gl_Position = size <= uMaxSprite ? uViewProj * vec4(c, 1.0) : kNowhere;
+    gl_PointSize = min(size, uMaxSprite);
+}
+)";
+}
+
+std::string fluidDepthFragment() {
+    return version() + kRay + R"(
+flat in vec3 vCenter;
+flat in float vRadius;
+flat in vec3 vSigma;
+uniform vec3 uEye;
+uniform mat4 uViewProj;
+layout(location = 0) out float fragViewDepth;
+void main() {
+    vec3 dir = cameraRay(gl_FragCoord.xy);
+    vec3 toCenter = vCenter - uEye;
+    float along = dot(toCenter, dir);
+    vec3 miss = toCenter - along * dir;
+    float h2 = vRadius * vRadius - dot(miss, miss);
+    if (h2 <= 0.0) discard;
+    float t = along - sqrt(h2);
+    vec4 clip = uViewProj * vec4(uEye + t * dir, 1.0);
+    gl_FragDepth = 0.5 + 0.5 * clip.z / clip.w;
+    fragViewDepth = t * dot(dir, uCamForward);
+}
+)";
+}
+
+std::string fluidThicknessFragment() {
+    return version() + kRay + R"(
+flat in vec3 vCenter;
+flat in float vRadius;
+flat in vec3 vSigma;
+uniform vec3 uEye;
+layout(location = 0) out vec4 fragDepths;  // optical depth rgb, thickness
+void main() {
+    vec3 dir = cameraRay(gl_FragCoord.xy);
+    vec3 toCenter = vCenter - uEye;
+    vec3 miss = toCenter - dot(toCenter, dir) * dir;
+    float h2 = vRadius * vRadius - dot(miss, miss);
+    if (h2 <= 0.0) discard;
+    float chord = 2.0 * sqrt(h2);
+    fragDepths = vec4(vSigma * chord, chord);
+}
+)";
+}
+
+// Bilateral: a Gaussian in screen space whose width is a world radius at the pixel's
+// depth, times a Gaussian of the depth difference, so separate sheets do not blend and
+// silhouettes stay where they are (empty pixels are left out).
+std::string fluidSmoothFragment() {
+    return version() + R"(
+uniform sampler2D uDepth;     // view depth; 0 = no liquid
+uniform ivec2 uAxis;          // (1, 0) or (0, 1)
+uniform float uWorldRadius;   // the filter's reach, world units
+uniform float uFocal;         // pixels per unit of x/depth
+uniform float uMaxPixels;
+layout(location = 0) out float fragViewDepth;
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    ivec2 size = textureSize(uDepth, 0);
+    float z = texelFetch(uDepth, p, 0).r;
+    fragViewDepth = z;
+    if (z <= 0.0) return;
+    float reach = min(uWorldRadius * uFocal / z, uMaxPixels);
+    if (reach < 1.0) return;
+    const float kTaps = 24.0;  // per side at most: beyond, the taps spread out
+    float stride = max(reach / kTaps, 1.0);
+    int n = int(ceil(reach / stride));
+    float spatial = -0.5 / (0.25 * reach * reach);
+    float range = -0.5 / (4.0 * uWorldRadius * uWorldRadius);  // sigma: twice the reach
+    float sum = 0.0, weights = 0.0;
+    for (int i = -n; i <= n; ++i) {
+        float x = round(float(i) * stride);
+        ivec2 q = p + int(x) * uAxis;
+        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
+        float zi = texelFetch(uDepth, q, 0).r;
+        if (zi <= 0.0) continue;
+        float dz = zi - z;
+        float w = exp(spatial * x * x + range * dz * dz);
+        sum += w * zi;
+        weights += w;
+    }
+    fragViewDepth = sum / weights;
+}
+)";
+}
+
+std::string fluidCompositeFragment() {
+    return liquidFragment(R"(
+uniform sampler2D uSmoothed;   // view depth, unit 2
+uniform sampler2D uDepths;     // optical depth rgb and thickness, unit 3 (coarser)
+uniform mat4 uViewProj;
+layout(location = 0) out vec4 fragColor;
+
+vec3 worldAt(ivec2 q, float z) {
+    vec3 d = cameraRay(vec2(q) + 0.5);
+    return uEye + d * (z / dot(d, uCamForward));
+}
+
+// The surface's tangent along `step`: from the neighbours on both sides, or from the
+// one nearer in depth at a silhouette, so the normal does not bend there.
+vec3 tangent(ivec2 p, ivec2 step, vec3 at, float z, vec3 fallback) {
+    ivec2 size = textureSize(uSmoothed, 0);
+    ivec2 a = p + step, b = p - step;
+    float za = all(greaterThanEqual(a, ivec2(0))) && all(lessThan(a, size)) ? texelFetch(uSmoothed, a, 0).r : 0.0;
+    float zb = all(greaterThanEqual(b, ivec2(0))) && all(lessThan(b, size)) ? texelFetch(uSmoothed, b, 0).r : 0.0;
+    float da = abs(za - z), db = abs(z - zb);
+    // Central where the surface goes on smoothly on both sides (one-sided differences
+    // would alternate from pixel to pixel on a curved slope), else the nearer side.
+    if (za > 0.0 && zb > 0.0 && max(da, db) <= 2.0 * min(da, db) + 1e-4 * z) {
+        return 0.5 * (worldAt(a, za) - worldAt(b, zb));
+    }
+    bool useA = za > 0.0 && (zb <= 0.0 || da <= db);
+    if (useA) return worldAt(a, za) - at;
+    if (zb > 0.0) return at - worldAt(b, zb);
+    return fallback;
+}
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    float z = texelFetch(uSmoothed, p, 0).r;
+    if (z <= 0.0) discard;
+    vec3 at = worldAt(p, z);
+    vec3 dx = tangent(p, ivec2(1, 0), at, z, uCamRight);
+    vec3 dy = tangent(p, ivec2(0, 1), at, z, uCamUp);
+    vec3 n = normalize(cross(dx, dy));
+    vec3 dir = normalize(at - uEye);
+    if (dot(n, dir) > 0.0) n = -n;
+    // Thickness varies sphere by sphere; a small blur (five bilinear taps of the
+    // half-resolution buffer, about 6 pixels across) leaves its large-scale variation.
+    vec2 uv = gl_FragCoord.xy / uViewport, texel = 1.5 / vec2(textureSize(uDepths, 0));
+    vec4 depths = 0.4 * textureLod(uDepths, uv, 0.0) +
+                  0.15 * (textureLod(uDepths, uv + vec2(texel.x, 0.0), 0.0) +
+                          textureLod(uDepths, uv - vec2(texel.x, 0.0), 0.0) +
+                          textureLod(uDepths, uv + vec2(0.0, texel.y), 0.0) +
+                          textureLod(uDepths, uv - vec2(0.0, texel.y), 0.0));
+    vec3 sigma = depths.a > 0.0 ? depths.rgb / depths.a : vec3(0.0);
+    fragColor = liquidShade(at, n, dir, depths.a, sigma);
+    vec4 clip = uViewProj * vec4(at, 1.0);
+    gl_FragDepth = 0.5 + 0.5 * clip.z / clip.w;
+    writePasses(at, n, vec3(0.0), 1.0);
+}
+)");
+}
+
+std::string liquidMeshVertex() {
+    return version() + R"(
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec3 aNormal;  // (0, 0, 0) when the mesh has none
+uniform mat4 uViewProj;
+out vec3 vWorld;
+out vec3 vNormal;
+void main() {
+    vWorld = aPosition;
+    vNormal = aNormal;
+    gl_Position = uViewProj * vec4(aPosition, 1.0);
+}
+)";
+}
+
+std::string liquidMeshThicknessFragment() {
+    return version() + R"(
+in vec3 vWorld;
+in vec3 vNormal;
+uniform vec3 uEye;
+layout(location = 0) out float fragSignedDistance;
+void main() {
+    float d = length(vWorld - uEye);
+    fragSignedDistance = gl_FrontFacing ? -d : d;
+}
+)";
+}
+
+std::string liquidMeshFragment() {
+    return liquidFragment(R"(
+in vec3 vWorld;
+in vec3 vNormal;
+uniform sampler2D uThickness;  // unit 2: the eye ray's length inside the mesh, per pixel
+uniform vec3 uMeshSigma;       // absorption per world unit
+layout(location = 0) out vec4 fragColor;
+void main() {
+    vec3 n = dot(vNormal, vNormal) > 0.25 ? normalize(vNormal)
+                                          : normalize(cross(dFdx(vWorld), dFdy(vWorld)));
+    vec3 dir = normalize(vWorld - uEye);
+    if (dot(n, dir) > 0.0) n = -n;
+    float depth = texelFetch(uThickness, ivec2(gl_FragCoord.xy), 0).r;
+    fragColor = liquidShade(vWorld, n, dir, depth, uMeshSigma);
+    writePasses(vWorld, n, vec3(0.0), 1.0);
+}
+)");
+}
+
+}  // namespace globular::shaders
