@@ -130,6 +130,24 @@ TEST(RenderGolden, Surface) {
     expectMatchesGolden(renderer.drawMesh(mesh, lookFor(extent, "constant")), "golden_surface.png");
 }
 
+TEST(RenderGolden, Fluid) {
+    const Globules g = heap();
+    SceneExtent extent;
+    extent.addFrame(g);
+    Renderer renderer(kWidth, kHeight, 4);
+    expectMatchesGolden(renderer.drawFluid(g, lookFor(extent, "constant")), "golden_fluid.png");
+}
+
+TEST(RenderGolden, LiquidSurface) {
+    const MeshView mesh = blob();
+    SceneExtent extent;
+    extent.addPoints(mesh.positions, mesh.vertexCount);
+    FrameSetup s = lookFor(extent, "constant");
+    s.liquidSurface = true;
+    Renderer renderer(kWidth, kHeight, 4);
+    expectMatchesGolden(renderer.drawMesh(mesh, s), "golden_liquid_surface.png");
+}
+
 TEST(RenderGolden, DetectsAChange) {
     // The comparison must be able to fail: a different colour mode is not the golden.
     const Globules g = heap();
