@@ -13,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <utility>
 
 #include "errors.h"
 #include "renderer.h"
@@ -190,6 +191,46 @@ int penumbraPixels(double softness) {
 TEST(Lighting, ShadowSoftnessWidensThePenumbra) {
     const int hard = penumbraPixels(0), soft = penumbraPixels(8);
     EXPECT_GT(soft, 2 * hard) << "hard " << hard << ", soft " << soft;
+}
+
+// Ambient occlusion darkens the floor where a sphere rests on it, and leaves the open
+// floor and the sphere's top as they were.
+TEST(Lighting, AmbientOcclusionDarkensTheContactOnly) {
+    Renderer renderer(kSize, kSize, 1);
+    FrameSetup s = bareSetup();
+    s.render.ground = true;
+    s.render.checkerSize = 1000;
+    s.render.environment = uniformEnvironment(1.0f).string();
+    s.camera = {{0, 3, 8}, {0, 0.5, 0}, 40};
+    Bounds3 content;
+    content.add(Vec3{-3, 0, -3});
+    content.add(Vec3{3, 3, 3});
+    s.content = content;
+    s.render.occlusionRadius = 1;
+    const Globules g = oneSphere({0, 1, 0}, 1);  // touching the ground at the origin
+    renderer.drawSpheres(g, s);
+    const LinearFrame plain = renderer.lastFrame();
+    s.render.ambientOcclusion = 1;
+    renderer.drawSpheres(g, s);
+    const LinearFrame& occluded = renderer.lastFrame();
+    // The floor just in front of the contact (found below the sphere's disc).
+    int contactY = 0;
+    for (int y = kSize - 1; y > 0 && contactY == 0; --y) {
+        if (std::abs(plain.pixel(kSize / 2, y)[2] - plain.pixel(kSize / 2, y - 1)[2]) > 0.05f) {
+            contactY = y;
+        }
+    }
+    ASSERT_GT(contactY, kSize / 2);
+    float darkest = 1;
+    for (int y = contactY + 1; y < std::min(contactY + 5, kSize); ++y) {
+        darkest = std::min(darkest, occluded.pixel(kSize / 2, y)[1] / plain.pixel(kSize / 2, y)[1]);
+    }
+    EXPECT_LT(darkest, 0.85f);
+    for (auto [x, y] : {std::pair{2, kSize - 2}, std::pair{kSize - 3, kSize - 2},
+                        std::pair{kSize / 2, kSize / 2 - 8}}) {
+        EXPECT_NEAR(occluded.pixel(x, y)[1], plain.pixel(x, y)[1], 0.01f * plain.pixel(x, y)[1])
+            << "(" << x << ", " << y << ")";
+    }
 }
 
 TEST(Lighting, MissingEnvironmentFileIsAnErrorNamingIt) {
