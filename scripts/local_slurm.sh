@@ -6,8 +6,9 @@
 # accounting database (so sacct has nothing to say; squeue and the files do).
 #   scripts/local_slurm.sh start [DIR]   then: export SLURM_CONF=DIR/slurm.conf
 #   scripts/local_slurm.sh stop [DIR]    stops the daemons it started and removes DIR
-# DIR defaults to /tmp/globular-slurm. Runs as root here (SlurmUser=root); the ports are
-# 16817 and 16818 unless GLOBULAR_SLURM_PORT (the controller's; slurmd's is one above).
+# DIR defaults to /tmp/globular-slurm. The daemons run as the user who starts them (root
+# in CI and here; jobs then run as that user); the ports are 16817 and 16818 unless
+# GLOBULAR_SLURM_PORT (the controller's; slurmd's is one above).
 set -euo pipefail
 cmd=${1:-}
 dir=${2:-/tmp/globular-slurm}
@@ -45,12 +46,13 @@ start() {
         --pid-file="$dir/run/munged.pid" --log-file="$dir/log/munged.log" \
         --seed-file="$dir/munge/munge.seed"
     host=$(hostname -s)
+    user=$(id -un)
     cpus=$(nproc)
     cat >"$dir/slurm.conf" <<CONF
 ClusterName=globular-local
 SlurmctldHost=$host(127.0.0.1)
-SlurmUser=root
-SlurmdUser=root
+SlurmUser=$user
+SlurmdUser=$user
 SlurmctldPort=$port
 SlurmdPort=$((port + 1))
 AuthType=auth/munge
