@@ -350,11 +350,15 @@ TEST(SceneDefaults, DefaultSceneTextParses) {
     EXPECT_TRUE(reporter.warnings.empty());
     EXPECT_EQ(scene.material.preset, "liquid");
     ASSERT_EQ(scene.emitters.size(), 1u);
-    EXPECT_EQ(scene.emitters[0].type, "helix");
-    EXPECT_EQ(scene.emitters[0].count, 400);
-    EXPECT_EQ(scene.emitters[0].center, (Vec3{0, 5, 0}));
-    EXPECT_EQ(scene.simulation.frames, 150);
+    EXPECT_EQ(scene.material.alpha, 1.5);  // the paper's best liquid, Fig. 1
+    EXPECT_EQ(scene.emitters[0].type, "spout");
+    EXPECT_EQ(scene.emitters[0].count, 800);
+    EXPECT_EQ(scene.emitters[0].center, (Vec3{0, 16, 0}));
+    EXPECT_EQ(scene.simulation.frames, 100);
     EXPECT_EQ(scene.simulation.dt, 0.001);
+    ASSERT_EQ(scene.colliders.size(), 1u);  // the glass
+    EXPECT_EQ(scene.render.mode, "surface");
+    EXPECT_EQ(scene.render.toneMapping, "aces");
 }
 
 /// Keys of each section of a resolved scene, in the order met ("emitter[1]" for arrays).
