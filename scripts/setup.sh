@@ -8,6 +8,8 @@
 #                                   hyperfine, ffmpeg) and jq, time
 #   WITH_SLURM=1 scripts/setup.sh   also Debian's Slurm and munge, for the farm test on a
 #                                   one-node cluster (scripts/local_slurm.sh; ctest -L slurm)
+#   WITH_BLENDER=1 scripts/setup.sh also Debian's blender, for the add-on's headless test
+#                                   (ctest -L blender; skipped without it)
 set -euo pipefail
 
 packages=(
@@ -25,6 +27,9 @@ if [[ "${WITH_PEERS:-0}" == 1 ]]; then
 fi
 if [[ "${WITH_SLURM:-0}" == 1 ]]; then
     packages+=(slurm-wlm munge)
+fi
+if [[ "${WITH_BLENDER:-0}" == 1 ]]; then
+    packages+=(blender)
 fi
 
 missing=()
