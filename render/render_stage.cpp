@@ -54,6 +54,10 @@ MeshView viewOf(const TriangleMesh& m, const std::string& colorBy) {
     const VertexAttribute* values =
         colorBy == "material" || colorBy == "temperature" ? m.attribute(colorBy) : nullptr;
     const VertexAttribute* materials = m.attribute("material");  // roughness and metallic
+    auto perVertex = [&](const char* name) -> const float* {
+        const VertexAttribute* a = m.attribute(name);
+        return a && a->values.size() == m.vertexCount() ? a->values.data() : nullptr;
+    };
     // The surface stage's meshes are closed level sets wound outward (core/mesh.h).
     return {m.positions.data(),
             m.normals.size() == m.positions.size() ? m.normals.data() : nullptr,
@@ -63,7 +67,10 @@ MeshView viewOf(const TriangleMesh& m, const std::string& colorBy) {
             true,
             values && values->values.size() == m.vertexCount() ? values->values.data() : nullptr,
             materials && materials->values.size() == m.vertexCount() ? materials->values.data()
-                                                                     : nullptr};
+                                                                     : nullptr,
+            perVertex("vx"),  // the velocity, for motion blur
+            perVertex("vy"),
+            perVertex("vz")};
 }
 
 /// color_by = temperature needs temperatures: a scene without [thermal] has none.
@@ -247,7 +254,10 @@ std::vector<int> finish(const RenderJob& job, const RenderPlan& plan, const Stag
     return {};
 }
 
-/// The animation the plan spans: 1..job.animationFrames, or the requested range.
+/// The animation the plan spans: the cached one, frames 1 to the last of an unbroken run
+/// of caches (all job.animationFrames once the simulation ran to the end; fewer after
+/// `run --frames 1-B`, which simulates to B), and never short of the requested range.
+/// job.animationFrames = 0: the requested range.
 std::pair<int, int> animationRange(const RenderJob& job, const StageContext& ctx) {
     if (job.animationFrames <= 0) return {ctx.firstFrame, ctx.lastFrame};
     if (ctx.lastFrame > job.animationFrames) {
@@ -255,7 +265,11 @@ std::pair<int, int> animationRange(const RenderJob& job, const StageContext& ctx
                          std::to_string(ctx.lastFrame) + " goes past the animation's " +
                          std::to_string(job.animationFrames) + " frames");
     }
-    return {1, job.animationFrames};
+    int cached = 0;
+    while (cached < job.animationFrames && fs::exists(cacheVdbPath(ctx.outDir, cached + 1))) {
+        ++cached;
+    }
+    return {1, std::max(cached, ctx.lastFrame)};
 }
 
 RenderPlan ensurePlan(const RenderJob& job, const std::vector<ColliderSolid>& solids,

@@ -24,8 +24,9 @@ struct RenderJob {
     ColliderScene colliders;  ///< [[collider]]: drawn at each frame's pose (collider_poses.h)
     std::vector<Vec3> materialColors;  ///< sRGB by material index, for color_by = material
     std::vector<SurfaceLook> materialLooks;  ///< roughness and metallic by material index
-    /// [simulation] frames: the animation 1..N that the render plan measures, whatever
-    /// range is drawn. 0: the requested range is the whole animation.
+    /// [simulation] frames N: the render plan measures the cached animation, frames 1..N
+    /// (or up to the last cached frame), whatever range is drawn. 0: the requested range
+    /// is the whole animation.
     int animationFrames = 0;
     /// The liquid look of each material, by index (mode = fluid; mode = surface draws a
     /// liquid when all are liquid). Empty: the surface opaque, the fluid the default liquid.

@@ -109,6 +109,21 @@ TEST(RenderPlan, ARangeMeasuredAloneFramesDifferently) {
               readRenderPlan(renderPlanPath(alone)).camera.position);
 }
 
+TEST(RenderPlan, SpansTheCachedFramesWhenTheSimulationStoppedEarly) {
+    // `run --frames 1-8` simulates to frame 8 only: the plan spans what is cached, and is
+    // measured again once the simulation has run to the end.
+    const fs::path dir = freshDir("early");
+    for (int f = 9; f <= kFrames; ++f) fs::remove(cacheVdbPath(dir, f));
+    RecordingReporter reporter("render");
+    render(splitJob(), dir, 1, 8, reporter);
+    EXPECT_EQ(readRenderPlan(renderPlanPath(dir)).lastFrame, 8);
+    for (int f = 9; f <= kFrames; ++f) {
+        writeGlobuleVdb(cacheVdbPath(dir, f), frameGlobules(f), {f, 0.04 * f});
+    }
+    render(splitJob(), dir, 9, 9, reporter);
+    EXPECT_EQ(readRenderPlan(renderPlanPath(dir)).lastFrame, kFrames);
+}
+
 TEST(RenderPlan, TomlRoundTripsEveryDoubleExactly) {
     RenderPlan plan;
     plan.firstFrame = 1;
