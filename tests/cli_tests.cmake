@@ -10,6 +10,10 @@ add_dependencies(resume_test globular)
 globular_test(reliability_test SOURCES reliability_test.cpp
               LIBS globular_surface OpenVDB::openvdb)
 add_dependencies(reliability_test globular)
+# Houdini's names, types and classes in what `globular run` writes (issue 16).
+globular_test(houdini_conventions_test SOURCES houdini_conventions_test.cpp
+              LIBS OpenVDB::openvdb)
+add_dependencies(houdini_conventions_test globular)
 # Issue 17: `globular farm`'s batch scripts (no Slurm needed), and the shot on a local
 # one-node Slurm (scripts/local_slurm.sh; skipped where Slurm is not installed).
 globular_test(farm_scripts_test SOURCES farm_scripts_test.cpp farm_command_test.cpp
