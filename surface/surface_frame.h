@@ -31,7 +31,7 @@ struct SurfaceFrame {
 };
 
 /// Splats, makes the level set, filters, removes droplets, cuts out the colliders, makes
-/// the fog volume (and the temperature grid) and meshes. Uses TBB inside (limit threads with a tbb::task_arena); the
+/// the fog volume, the velocity grid (and the temperature grid) and meshes. Uses TBB inside (limit threads with a tbb::task_arena); the
 /// result does not depend on the thread count.
 /// @param colliders the solids where the frame puts them; with settings.subtractColliders
 ///        each is cut out of the liquid (collider_cut.h), so the surface never shows
