@@ -37,7 +37,7 @@ uniform float uRadius;     // world units
 uniform float uStrength;
 layout(location = 0) out vec4 fragColor;
 
-const int kTaps = 12;
+const int kTaps = 8;
 
 float depthAt(ivec2 p) {
     return texelFetch(uDepth, clamp(p, ivec2(0), ivec2(uViewport) - 1), 0).r;

@@ -158,6 +158,30 @@ TEST(Lighting, MetalsReflectTheirColourAndDiffuseNothing) {
     EXPECT_GT(brightest(renderer.lastFrame()), 0.5f);  // its highlight is there
 }
 
+// A mesh takes each vertex's material (its "material" attribute) for roughness and
+// metallic: a square of material 1 (metal) is dark off its highlight where one of
+// material 0 (dielectric) shows its colour.
+TEST(Lighting, MeshVerticesTakeTheirMaterialsLook) {
+    Renderer renderer(kSize, kSize, 1);
+    FrameSetup s = keyLitSetup();
+    s.lights.front().direction = {1, 0, -1};  // the mirror direction misses the camera
+    s.render.color = {0.9, 0.2, 0.1};
+    s.materialLooks = {{0.15, 0.0}, {0.15, 1.0}};
+    const float positions[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+    const float normals[] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    const uint32_t triangles[] = {0, 1, 2, 0, 2, 3};
+    float redOf[2];
+    for (int material = 0; material < 2; ++material) {
+        const float materials[] = {float(material), float(material), float(material),
+                                   float(material)};
+        MeshView mesh{positions, normals, 4, triangles, 2, false, nullptr, materials};
+        renderer.drawMesh(mesh, s);
+        redOf[material] = redAt(renderer.lastFrame(), 0, 0);
+    }
+    EXPECT_GT(redOf[0], 0.3f);
+    EXPECT_LT(redOf[1], 0.1f * redOf[0]);
+}
+
 // The shadow's edge on the ground: hard without softness, a penumbra several texels wide
 // with it.
 int penumbraPixels(double softness) {
