@@ -189,6 +189,7 @@ void FluidPass::draw(const FrameUniforms& f, const FluidLook& look) {
     applyLiquidUniforms(mComposite, f, look.liquid);
     glUniform1i(mComposite.uniform("uSmoothed"), 2);
     glUniform1i(mComposite.uniform("uDepths"), 3);
+    glUniform1f(mComposite.uniform("uEdgeThickness"), float(mMeanRadius));
     mBehind.bind(1);
     glActiveTexture(GL_TEXTURE2);
     glBindTexture(GL_TEXTURE_2D, source->id());

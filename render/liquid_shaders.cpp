@@ -253,6 +253,7 @@ std::string fluidCompositeFragment() {
     return liquidFragment(R"(
 uniform sampler2D uSmoothed;   // view depth, unit 2
 uniform sampler2D uDepths;     // optical depth rgb and thickness, unit 3 (coarser)
+uniform float uEdgeThickness;  // world units
 uniform mat4 uViewProj;
 layout(location = 0) out vec4 fragColor;
 
@@ -285,8 +286,8 @@ void main() {
     float z = texelFetch(uSmoothed, p, 0).r;
     if (z <= 0.0) discard;
     vec3 at = worldAt(p, z);
-    vec3 dx = tangent(p, ivec2(1, 0), at, z, uCamRight);
-    vec3 dy = tangent(p, ivec2(0, 1), at, z, uCamUp);
+    vec3 dx = tangent(p, ivec2(2, 0), at, z, uCamRight);
+    vec3 dy = tangent(p, ivec2(0, 2), at, z, uCamUp);
     vec3 n = normalize(cross(dx, dy));
     vec3 dir = normalize(at - uEye);
     if (dot(n, dir) > 0.0) n = -n;
@@ -299,7 +300,11 @@ void main() {
                           textureLod(uDepths, uv + vec2(0.0, texel.y), 0.0) +
                           textureLod(uDepths, uv - vec2(0.0, texel.y), 0.0));
     vec3 sigma = depths.a > 0.0 ? depths.rgb / depths.a : vec3(0.0);
-    fragColor = liquidShade(at, n, dir, depths.a, sigma);
+    // Where the liquid thins out to its silhouette (less than uEdgeThickness deep), it
+    // fades into what lies behind: the smoothed depth is least reliable there, and the
+    // edge is soft instead of stair-stepped.
+    float edge = smoothstep(0.0, uEdgeThickness, depths.a);
+    fragColor = mix(textureLod(uBehind, uv, 0.0), liquidShade(at, n, dir, depths.a, sigma), edge);
     vec4 clip = uViewProj * vec4(at, 1.0);
     gl_FragDepth = 0.5 + 0.5 * clip.z / clip.w;
     writePasses(at, n, vec3(0.0), 1.0);
