@@ -3,7 +3,7 @@
 // instruction set (simd_path.h, sim/CMakeLists.txt) with GLOBULAR_SIMD_NAMESPACE naming
 // the path: one source, so the paths cannot drift apart. The AVX-512 build takes the
 // hand-written 16-lane kernels; the AVX2 and scalar builds take their plain loops, which
-// the compiler vectorises for the instruction set it is given.
+// the compiler vectorises where it can (the compaction of neighbours stays serial).
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -25,6 +25,7 @@ namespace globular {
 namespace {
 
 constexpr std::size_t kGrain = 256;
+
 /// One grid cell's members in a range of globules in grid order, and what is around them.
 struct CellGroup {
     std::size_t last = 0;      ///< the members are [first, last)
@@ -331,6 +332,7 @@ void thermal(Globules& g, const PairTable& pairs, NeighborWorkspace& w, Accelera
 
 }  // namespace
 
+// The one symbol this build exports (force_kernels.h).
 namespace GLOBULAR_SIMD_NAMESPACE {
 extern const ForceKernels kForceKernels;
 const ForceKernels kForceKernels{sortingOne, sortingTable, thermal};
