@@ -202,11 +202,11 @@ LatLongImage readLatLongExr(const std::filesystem::path& path) {
     } catch (const std::exception& e) {
         throw IoError(name + " cannot be read as OpenEXR: " + e.what());
     }
-    for (float v : image.rgb) {
-        if (!std::isfinite(v) || v < 0) {
-            throw IoError(name + " holds a negative or non-finite radiance (" +
-                          std::to_string(v) + ")");
+    for (float& v : image.rgb) {
+        if (!std::isfinite(v)) {
+            throw IoError(name + " holds a non-finite radiance (" + std::to_string(v) + ")");
         }
+        v = std::max(v, 0.0f);  // lossy compression leaves tiny negatives around black
     }
     return image;
 }

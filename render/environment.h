@@ -53,8 +53,9 @@ struct SkyLook {
 LatLongImage proceduralSky(const SkyLook& sky, int width = 256, int height = 128);
 
 /// Reads a lat-long HDR environment (OpenEXR, R G B; a missing channel reads as 0).
+/// Negative values (lossy compression's noise around black) read as 0.
 /// @throw IoError naming @p path when it is missing, damaged, not an EXR, has no R, G or B,
-///        or holds non-finite or negative values.
+///        or holds a non-finite value.
 LatLongImage readLatLongExr(const std::filesystem::path& path);
 
 /// The irradiance E(n) = integral of L(w) max(n.w, 0) dw, as 9 coefficients c such that

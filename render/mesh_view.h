@@ -24,6 +24,11 @@ struct MeshView {
     /// Each vertex's material index (the mesh's "material" attribute, scenes of several
     /// materials), for its roughness and metallic; null: material 0 everywhere.
     const float* materials = nullptr;
+    /// Each vertex's velocity, world units/s (the mesh's vx, vy, vz attributes: the surface
+    /// stage's kernel-weighted mean of the globules'), for motion blur; null: still.
+    const float* vx = nullptr;
+    const float* vy = nullptr;
+    const float* vz = nullptr;
 };
 
 }  // namespace globular

@@ -149,8 +149,8 @@ void RenderSettings::describe(SettingsSection& s) {
            "ground, when drawn, fades into alpha instead of the background colour");
     s.flag("motion_blur", motionBlur,
            "motion blur: each frame averages motion_samples sub-frames over the shutter, the "
-           "globules moved along their velocities (spheres; a surface mesh has none and stays "
-           "sharp)");
+           "globules moved along their velocities (surface mode: the mesh's vertices along "
+           "their vx vy vz; a mesh without them stays sharp)");
     s.number("shutter", shutter, kUnit,
              "time the shutter is open, as a fraction of the frame interval 1/fps, centred on "
              "the frame's instant (0.5: a 180-degree shutter)");

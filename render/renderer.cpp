@@ -409,9 +409,10 @@ Image Renderer::drawMesh(const MeshView& mesh, const FrameSetup& setup) {
             pass.draw(f, mesh.closed ? detail::MeshPass::Cull::Back : detail::MeshPass::Cull::None);
         }
     };
-    // The mesh carries no velocities: its sub-frames differ only by the lens.
-    return im.accumulate(s, [&](const FrameSetup& sub, double) {
-        im.draw(sub, own.box, Content{*im.mesh, mesh});
+    std::vector<float> moved;  // the sub-frame's positions, when the mesh has velocities
+    return im.accumulate(s, [&](const FrameSetup& sub, double seconds) {
+        const MeshView view = movedBy(mesh, seconds, moved);
+        im.draw(sub, own.box, Content{*im.mesh, view});
     });
 }
 
@@ -521,8 +522,12 @@ Image Renderer::Impl::drawLiquidMesh(const MeshView& mesh, const FrameSetup& set
         void shadow(const FrameUniforms& f) { pass.drawShadow(f); }
         void draw(const FrameUniforms& f) { pass.draw(f, look, optics); }
     };
-    const Content content{*liquidMesh, mesh, liquidLook(s), opticsOf(s.materialOptics, 0)};
-    return accumulate(s, [&](const FrameSetup& sub, double) { draw(sub, own.box, Content(content)); });
+    std::vector<float> moved;  // the sub-frame's positions, when the mesh has velocities
+    return accumulate(s, [&](const FrameSetup& sub, double seconds) {
+        const MeshView view = movedBy(mesh, seconds, moved);
+        draw(sub, own.box,
+             Content{*liquidMesh, view, liquidLook(s), opticsOf(s.materialOptics, 0)});
+    });
 }
 
 void Renderer::setOcclusionCulling(bool on) { mImpl->culling = on; }

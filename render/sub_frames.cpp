@@ -97,4 +97,18 @@ Globules movedBy(const Globules& globules, double seconds) {
     return moved;
 }
 
+MeshView movedBy(const MeshView& mesh, double seconds, std::vector<float>& storage) {
+    if (seconds == 0 || !mesh.vx || !mesh.vy || !mesh.vz) return mesh;
+    storage.assign(mesh.positions, mesh.positions + 3 * mesh.vertexCount);
+    const float t = float(seconds);
+    for (std::size_t v = 0; v < mesh.vertexCount; ++v) {
+        storage[3 * v] += mesh.vx[v] * t;
+        storage[3 * v + 1] += mesh.vy[v] * t;
+        storage[3 * v + 2] += mesh.vz[v] * t;
+    }
+    MeshView moved = mesh;
+    moved.positions = storage.data();
+    return moved;
+}
+
 }  // namespace globular

@@ -12,6 +12,7 @@
 #include "camera.h"
 #include "globules.h"
 #include "linear_frame.h"
+#include "mesh_view.h"
 #include "render_settings.h"
 
 namespace globular {
@@ -52,5 +53,9 @@ void addShifted(std::vector<float>& sum, const LinearFrame& frame, PixelShift sh
 
 /// @p globules with each centre moved by its velocity times @p seconds.
 Globules movedBy(const Globules& globules, double seconds);
+
+/// @p mesh with each vertex moved by its velocity times @p seconds, its positions held in
+/// @p storage; @p mesh itself when it has no velocities or @p seconds is 0.
+MeshView movedBy(const MeshView& mesh, double seconds, std::vector<float>& storage);
 
 }  // namespace globular

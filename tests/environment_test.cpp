@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -176,10 +177,22 @@ TEST(Environment, MissingOrDamagedFilesAreErrorsNamingTheFile) {
     writeExr(noBlue, 64, 32, rgb, false);
     EXPECT_NE(readError(noBlue).find("no B channel"), std::string::npos);
 
-    rgb[5] = -1;
-    const fs::path negative = scratch("negative.exr");
-    writeExr(negative, 64, 32, rgb);
-    EXPECT_NE(readError(negative).find("negative"), std::string::npos);
+    rgb[5] = std::numeric_limits<float>::infinity();
+    const fs::path infinite = scratch("infinite.exr");
+    writeExr(infinite, 64, 32, rgb);
+    EXPECT_NE(readError(infinite).find("infinite.exr"), std::string::npos);
+    EXPECT_NE(readError(infinite).find("non-finite"), std::string::npos);
+}
+
+// Lossy compression leaves tiny negatives around black: they read as 0.
+TEST(Environment, NegativeRadianceReadsAsZero) {
+    std::vector<float> rgb(8 * 4 * 3, 0.5f);
+    rgb[4] = -1e-4f;
+    const fs::path path = scratch("negative.exr");
+    writeExr(path, 8, 4, rgb);
+    const LatLongImage image = readLatLongExr(path);
+    EXPECT_EQ(image.rgb[4], 0.0f);
+    EXPECT_EQ(image.rgb[5], 0.5f);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "mesh_view.h"
 #include "renderer.h"
 #include "sub_frames.h"
 
@@ -210,6 +211,32 @@ TEST(MotionBlur, LeavesAStillSphereUnchanged) {
         worst = std::max(worst, std::abs(int(sharp.rgba[i]) - int(blurred.rgba[i])));
     }
     EXPECT_LE(worst, 1);  // the average of identical sub-frames, to float rounding
+}
+
+TEST(MotionBlur, MovesAMeshAlongItsVerticesVelocities) {
+    // A square 2 units wide facing the camera, moving right at 100 units/s: over a
+    // half-frame shutter at 25 fps its sub-frames span 2 * 15/16 units more.
+    const std::vector<float> positions{-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+    const std::vector<uint32_t> triangles{0, 1, 2, 0, 2, 3};
+    const std::vector<float> vx(4, 100.0f), still(4, 0.0f);
+    MeshView mesh{positions.data(), nullptr, 4, triangles.data(), 2, false};
+    FrameSetup s = setup();
+    Renderer renderer(kWidth, kHeight, 4, 1024);
+    renderer.drawMesh(mesh, s);
+    const LinearFrame sharp = renderer.lastFrame();
+    s.render.motionBlur = true;
+    s.render.motionSamples = 16;
+    renderer.drawMesh(mesh, s);  // no velocities: sharp
+    EXPECT_EQ(rowExtent(renderer.lastFrame()), rowExtent(sharp));
+    mesh.vx = vx.data();
+    mesh.vy = mesh.vz = still.data();
+    renderer.drawMesh(mesh, s);
+    const double pixelsPerUnit = focalPixels() / kEyeDistance;
+    const double side = 2 * pixelsPerUnit;
+    EXPECT_NEAR(rowExtent(sharp), side, 2);  // and a partly covered pixel at each edge
+    EXPECT_NEAR(rowExtent(renderer.lastFrame()) - rowExtent(sharp),
+                2.0 * 15 / 16 * pixelsPerUnit, 1.5);
+    EXPECT_NEAR(columnExtent(renderer.lastFrame()), columnExtent(sharp), 1);
 }
 
 /// The second moment of the alpha about its centroid (x and y together), pixels^2, over
