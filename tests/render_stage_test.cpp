@@ -174,6 +174,23 @@ TEST(RenderStage, SurfaceModeReadsTheMeshes) {
     }
 }
 
+TEST(RenderStage, FluidModeDrawsTheCachesAsALiquid) {
+    // mode = "fluid" reads the caches as spheres mode does, and draws them otherwise.
+    const fs::path fluid = freshDir("fluid"), spheres = freshDir("fluid_spheres");
+    writeCaches(fluid, 1, 1);
+    writeCaches(spheres, 1, 1);
+    RenderJob job = smallJob();
+    RecordingReporter reporter("render");
+    runRenderStage(job, context(spheres, 1, 1, reporter));
+    job.render.mode = "fluid";
+    runRenderStage(job, context(fluid, 1, 1, reporter));
+    const Image a = readPng(framePngPath(fluid, 1)), b = readPng(framePngPath(spheres, 1));
+    ASSERT_EQ(a.rgba.size(), b.rgba.size());
+    int differ = 0;
+    for (std::size_t i = 0; i < a.rgba.size(); ++i) differ += std::abs(a.rgba[i] - b.rgba[i]) > 12;
+    EXPECT_GT(differ, 40) << "the liquid is not the opaque spheres";
+}
+
 TEST(RenderStage, MovieNeedsFfmpegOnPath) {
     const fs::path dir = freshDir("movie");
     writeCaches(dir, 1, 3);
