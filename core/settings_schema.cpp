@@ -206,12 +206,20 @@ SettingsSection& SettingsSection::vec3(const std::string& key, Vec3& field, Numb
     return *this;
 }
 
+SettingsSection& SettingsSection::retired(const std::string& key, std::string why) {
+    mRetired[key] = std::move(why);
+    return *this;
+}
+
 void SettingsSection::assign(const std::string& key, const SettingValue& value) {
     auto it = std::find_if(mEntries.begin(), mEntries.end(),
                            [&](const Entry& e) { return e.key == key; });
     const std::string where =
         value.place.describe() + ": [" + mName + "] key '" + quoteForMessage(key, 80) + "'";
     if (it == mEntries.end()) {
+        if (auto retired = mRetired.find(key); retired != mRetired.end()) {
+            throw SceneError(where + ": no longer exists; " + retired->second);
+        }
         std::string hint = closestMatch(key, keys());
         throw SceneError(where + ": unknown key" +
                          (hint.empty() ? "" : " (did you mean '" + hint + "'?)"));

@@ -62,6 +62,10 @@ public:
     SettingsSection& vec3(const std::string& key, Vec3& field, NumberRange range,
                           std::string doc);
 
+    /// A key that no longer exists: assigning it is a SceneError saying @p why (what
+    /// replaced it), instead of "unknown key". Not among keys().
+    SettingsSection& retired(const std::string& key, std::string why);
+
     /// Binds @p value to @p key.
     /// @throw SceneError naming the place, section and key: unknown key (with a
     ///        suggestion), wrong type, value out of range, not finite.
@@ -90,6 +94,7 @@ private:
     std::string mName;
     std::vector<Entry> mEntries;
     std::map<std::string, SourcePlace> mPlaces;
+    std::map<std::string, std::string> mRetired;  // key -> what replaced it
 };
 
 /// A number as messages quote it: the shortest default form ("25", "4e+07", "0.001").

@@ -99,6 +99,9 @@ void RenderSettings::describe(SettingsSection& s) {
     s.number("specular", specular, kUnit,
              "reflectance of dielectric materials (Filament's): f0 = 0.16 specular^2, 0.5 = 4% "
              "(water, plastic), 0 = no specular reflection at all");
+    s.retired("ambient",
+              "the environment lights the scene now (the procedural sky or [render] "
+              "environment), scaled by environment_intensity; see also ambient_occlusion");
     s.text("environment", environment,
            "the light all around: a lat-long (equirectangular) HDR OpenEXR file, +y up, its "
            "middle looking along -z (relative to the scene file); \"\": the procedural "

@@ -4,6 +4,7 @@
 
 #include "errors.h"
 #include "settings_schema.h"
+#include "surface_look.h"
 
 namespace globular {
 namespace {
@@ -49,6 +50,48 @@ TEST(RenderSettings, RangesAreCheckedOnAssign) {
     EXPECT_THROW(section.assign("color", at(std::vector<double>{1.5, 0, 0})), SceneError);
     EXPECT_THROW(section.assign("mode", at(std::string("voxels"))), SceneError);
     EXPECT_THROW(section.assign("colour", at(std::vector<double>{1, 1, 1})), SceneError);
+}
+
+TEST(RenderSettings, LightKeysBindAndAreCheckedOnAssign) {
+    RenderSettings s;
+    SettingsSection section("render");
+    s.describe(section);
+    section.assign("environment", at(std::string("sky.exr")));
+    section.assign("environment_intensity", at(2.5));
+    section.assign("shadow_softness", at(4.0));
+    section.assign("ambient_occlusion", at(0.5));
+    section.assign("occlusion_radius", at(0.25));
+    EXPECT_EQ(s.environment, "sky.exr");
+    EXPECT_EQ(s.environmentIntensity, 2.5);
+    EXPECT_EQ(s.shadowSoftness, 4.0);
+    EXPECT_EQ(s.ambientOcclusion, 0.5);
+    EXPECT_EQ(s.occlusionRadius, 0.25);
+    EXPECT_THROW(section.assign("environment_intensity", at(-1.0)), SceneError);
+    EXPECT_THROW(section.assign("shadow_softness", at(17.0)), SceneError);
+    EXPECT_THROW(section.assign("ambient_occlusion", at(1.5)), SceneError);
+    EXPECT_THROW(section.assign("occlusion_radius", at(-0.1)), SceneError);
+    EXPECT_THROW(section.assign("specular", at(1.2)), SceneError);
+    // The old sky-light fraction is gone: the environment lights the scene.
+    try {
+        section.assign("ambient", at(0.3));
+        FAIL() << "no error";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("environment_intensity"), std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(RenderSettings, MaterialRoughnessAndMetallicAreInTheUnitRange) {
+    MaterialSettings m;
+    SettingsSection section("material");
+    m.describe(section);
+    section.assign("roughness", at(0.8));
+    section.assign("metallic", at(1.0));
+    EXPECT_EQ(surfaceLook(m).roughness, 0.8);
+    EXPECT_EQ(surfaceLook(m).metallic, 1.0);
+    EXPECT_THROW(section.assign("roughness", at(1.5)), SceneError);
+    EXPECT_THROW(section.assign("metallic", at(-0.5)), SceneError);
+    EXPECT_EQ(SurfaceLook{}.roughness, MaterialSettings{}.roughness);
 }
 
 TEST(RenderSettings, ValidateNamesTheKeyAndPlace) {
