@@ -36,8 +36,10 @@ ViewAxes viewAxes() {
 /// The value that a fraction @p keep of @p values lie at or above (at or below for
 /// @p upper): the window edge that holds the content of that many frames.
 double quantileEdge(std::vector<double> values, double keep, bool upper) {
-    const double rank = (upper ? keep : 1.0 - keep) * double(values.size() - 1);
-    const auto k = std::size_t(upper ? std::ceil(rank) : std::floor(rank));
+    // The smallest count of values that is at least that fraction of them.
+    const std::size_t n = values.size();
+    const auto held = std::clamp<std::size_t>(std::size_t(std::ceil(keep * double(n) - 1e-9)), 1, n);
+    const std::size_t k = upper ? held - 1 : n - held;
     std::nth_element(values.begin(), values.begin() + k, values.end());
     return values[k];
 }

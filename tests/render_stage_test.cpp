@@ -12,6 +12,8 @@
 #include "mesh.h"
 #include "png_image.h"
 #include "renderer.h"
+#include "render_plan.h"
+#include "transform.h"
 #include "recording_reporter.h"
 
 namespace globular {
@@ -55,6 +57,42 @@ StageContext context(const fs::path& dir, int first, int last, Reporter& reporte
     ctx.lastFrame = last;
     ctx.reporter = &reporter;
     return ctx;
+}
+
+TEST(RenderStage, AutomaticCameraFramesWhereTheContentIsForMostOfTheShot) {
+    // A column 15 units tall for 5 frames, then a puddle 7 units wide for 15: the plan's
+    // camera frames the puddle (the subject of three quarters of the shot) large, the
+    // column's top leaving the picture, instead of the whole column over a speck.
+    const fs::path dir = freshDir("framing");
+    for (int f = 1; f <= 20; ++f) {
+        Globules g;
+        if (f <= 5) {
+            for (int k = 0; k < 30; ++k) g.add({0, 0.5 + 0.5 * k, 0}, {0, -5, 0}, 0.5f, 1, k);
+        } else {
+            for (int i = 0; i < 7; ++i) {
+                for (int j = 0; j < 7; ++j) g.add({i - 3.0, 0.5, j - 3.0}, {}, 0.5f, 1, 7 * i + j);
+            }
+        }
+        writeGlobuleVdb(cacheVdbPath(dir, f), g, {f, 0.04 * f});
+    }
+    RecordingReporter reporter;
+    RenderJob job = smallJob();
+    job.render.width = 160;
+    job.render.height = 90;
+    const RenderPlan plan = ensureRenderPlan(job, context(dir, 1, 20, reporter));
+    const double aspect = 160.0 / 90.0;
+    const Mat4 m = perspective(plan.camera.fov, aspect, 0.1, 1000) *
+                   lookAt(plan.camera.position, plan.camera.target);
+    double left = 1e300, right = -1e300;
+    for (const Vec3 p : {Vec3{-3.5, 0, -3.5}, Vec3{3.5, 0, -3.5}, Vec3{-3.5, 1, 3.5},
+                         Vec3{3.5, 1, 3.5}, Vec3{-3.5, 0, 3.5}, Vec3{3.5, 1, -3.5}}) {
+        const Vec4 c = transformPoint(m, p);
+        left = std::min(left, c.x / c.w);
+        right = std::max(right, c.x / c.w);
+    }
+    EXPECT_GT(right - left, 2 * 0.6) << "the puddle's width, NDC (2 = the image)";
+    EXPECT_GE(left, -0.91);
+    EXPECT_LE(right, 0.91);
 }
 
 TEST(RenderStage, WritesAPngForEachRequestedFrameOnly) {
