@@ -143,7 +143,19 @@ void FluidPass::draw(const FrameUniforms& f, const FluidLook& look) {
     glUseProgram(mDepth.id());
     applySpriteUniforms(mDepth, f, mMaxSprite, 1.0);
     applyMaterials(mDepth, look.materials);
+    glUniform1f(mDepth.uniform("uSide"), -1.0f);
     drawPoints();
+
+    // ... and the back: view depth of the farthest sphere's back, for the liquid's depth.
+    mBack.bind(f.width, f.height, GL_R32F, true, false);
+    glClearBufferfv(GL_COLOR, 0, none);
+    glClearDepth(0.0);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glClearDepth(1.0);
+    glDepthFunc(GL_GREATER);
+    glUniform1f(mDepth.uniform("uSide"), 1.0f);
+    drawPoints();
+    glDepthFunc(GL_LESS);
 
     // 2. Thickness and optical depth, summed, at half resolution.
     const int hw = std::max(1, f.width / 2), hh = std::max(1, f.height / 2);
@@ -189,12 +201,18 @@ void FluidPass::draw(const FrameUniforms& f, const FluidLook& look) {
     applyLiquidUniforms(mComposite, f, look.liquid);
     glUniform1i(mComposite.uniform("uSmoothed"), 2);
     glUniform1i(mComposite.uniform("uDepths"), 3);
+    glUniform1i(mComposite.uniform("uFront"), 4);
+    glUniform1i(mComposite.uniform("uBack"), 5);
     glUniform1f(mComposite.uniform("uEdgeThickness"), float(mMeanRadius));
     mBehind.bind(1);
     glActiveTexture(GL_TEXTURE2);
     glBindTexture(GL_TEXTURE_2D, source->id());
     glActiveTexture(GL_TEXTURE3);
     glBindTexture(GL_TEXTURE_2D, mDepths.texture.id());
+    glActiveTexture(GL_TEXTURE4);
+    glBindTexture(GL_TEXTURE_2D, mFront.texture.id());
+    glActiveTexture(GL_TEXTURE5);
+    glBindTexture(GL_TEXTURE_2D, mBack.texture.id());
     glActiveTexture(GL_TEXTURE0);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);

@@ -4,8 +4,10 @@
 // rendering with curvature flow" (I3D 2009):
 //  1. the front depth of the union of the globules' spheres (point sprites that ray-cast
 //     their sphere; view depth into a float buffer, depth-tested);
-//  2. thickness: each sphere's chord along the eye ray, summed (additive, half
-//     resolution), with its material's absorption times the chord (optical depth);
+//  2. the depth of the liquid along each eye ray: from that front to the farthest back
+//     of a sphere (the same splat, depth-tested the other way); and each sphere's chord
+//     along the eye ray summed with its material's absorption times the chord (additive,
+//     half resolution), whose ratio is the absorption where materials mix;
 //  3. the depth smoothed by a separable bilateral filter whose reach is a world radius
 //     (render.fluid_smoothing globule radii) at each pixel's depth, twice over;
 //  4. normals from the smoothed depth, and the liquid shading of liquid_shaders.h into
@@ -46,7 +48,7 @@ class FluidPass {
     gl::VertexArray mPoints, mEmpty;
     gl::Buffer mX, mY, mZ, mRadius, mMaterial;
     BehindTexture mBehind;
-    TextureTarget mFront, mDepths, mPing, mPong;
+    TextureTarget mFront, mBack, mDepths, mPing, mPong;
     std::size_t mCount = 0;
     double mMeanRadius = 1;
 };

@@ -173,6 +173,7 @@ flat in float vRadius;
 flat in vec3 vSigma;
 uniform vec3 uEye;
 uniform mat4 uViewProj;
+uniform float uSide;  // -1: the spheres' fronts (nearest kept); +1: their backs (farthest)
 layout(location = 0) out float fragViewDepth;
 void main() {
     vec3 dir = cameraRay(gl_FragCoord.xy);
@@ -181,7 +182,7 @@ void main() {
     vec3 miss = toCenter - along * dir;
     float h2 = vRadius * vRadius - dot(miss, miss);
     if (h2 <= 0.0) discard;
-    float t = along - sqrt(h2);
+    float t = along + uSide * sqrt(h2);
     vec4 clip = uViewProj * vec4(uEye + t * dir, 1.0);
     gl_FragDepth = 0.5 + 0.5 * clip.z / clip.w;
     fragViewDepth = t * dot(dir, uCamForward);
@@ -252,7 +253,9 @@ void main() {
 std::string fluidCompositeFragment() {
     return liquidFragment(R"(
 uniform sampler2D uSmoothed;   // view depth, unit 2
-uniform sampler2D uDepths;     // optical depth rgb and thickness, unit 3 (coarser)
+uniform sampler2D uDepths;     // optical depth rgb and chord sum, unit 3 (coarser)
+uniform sampler2D uFront;      // view depth of the nearest front, unit 4
+uniform sampler2D uBack;       // view depth of the farthest back, unit 5
 uniform float uEdgeThickness;  // world units
 uniform mat4 uViewProj;
 layout(location = 0) out vec4 fragColor;
@@ -299,12 +302,17 @@ void main() {
                           textureLod(uDepths, uv - vec2(texel.x, 0.0), 0.0) +
                           textureLod(uDepths, uv + vec2(0.0, texel.y), 0.0) +
                           textureLod(uDepths, uv - vec2(0.0, texel.y), 0.0));
+    // The absorption: the chord-weighted mean of the globules' materials. The depth: from
+    // the nearest front to the farthest back (summed chords would count every overlap of
+    // the globules, several times the liquid's real depth).
     vec3 sigma = depths.a > 0.0 ? depths.rgb / depths.a : vec3(0.0);
+    float span = max(texelFetch(uBack, p, 0).r - texelFetch(uFront, p, 0).r, 0.0);
+    float thickness = span / dot(dir, uCamForward);
     // Where the liquid thins out to its silhouette (less than uEdgeThickness deep), it
     // fades into what lies behind: the smoothed depth is least reliable there, and the
     // edge is soft instead of stair-stepped.
-    float edge = smoothstep(0.0, uEdgeThickness, depths.a);
-    fragColor = mix(textureLod(uBehind, uv, 0.0), liquidShade(at, n, dir, depths.a, sigma), edge);
+    float edge = smoothstep(0.0, uEdgeThickness, depths.a);  // the blurred chords: soft
+    fragColor = mix(textureLod(uBehind, uv, 0.0), liquidShade(at, n, dir, thickness, sigma), edge);
     vec4 clip = uViewProj * vec4(at, 1.0);
     gl_FragDepth = 0.5 + 0.5 * clip.z / clip.w;
     writePasses(at, n, vec3(0.0), 1.0);
