@@ -88,6 +88,18 @@ TEST(SettingsSection, BindsEveryType) {
     EXPECT_EQ(f.center, (Vec3{-1, 0.5, 8}));
 }
 
+// A retired key says what replaced it, and is neither a key nor a suggestion.
+TEST(SettingsSection, RetiredKeySaysWhatReplacedIt) {
+    Fields f;
+    SettingsSection s = bind(f);
+    s.retired("spead", "use speed");
+    const std::string message = sceneError([&] { s.assign("spead", at(1.0)); });
+    EXPECT_NE(message.find("[thing] key 'spead'"), std::string::npos) << message;
+    EXPECT_NE(message.find("no longer exists; use speed"), std::string::npos) << message;
+    for (const std::string& key : s.keys()) EXPECT_NE(key, "spead");
+    EXPECT_EQ(f.speed, 2.5);
+}
+
 TEST(SettingsSection, NumberAcceptsAnInteger) {
     Fields f;
     SettingsSection s = bind(f);
