@@ -273,11 +273,12 @@ vec3 tangent(ivec2 p, ivec2 step, vec3 at, float z, vec3 fallback) {
     float za = all(greaterThanEqual(a, ivec2(0))) && all(lessThan(a, size)) ? texelFetch(uSmoothed, a, 0).r : 0.0;
     float zb = all(greaterThanEqual(b, ivec2(0))) && all(lessThan(b, size)) ? texelFetch(uSmoothed, b, 0).r : 0.0;
     float da = abs(za - z), db = abs(z - zb);
-    // Central where the surface goes on smoothly on both sides (one-sided differences
-    // would alternate from pixel to pixel on a curved slope), else the nearer side.
-    if (za > 0.0 && zb > 0.0 && max(da, db) <= 2.0 * min(da, db) + 1e-4 * z) {
-        return 0.5 * (worldAt(a, za) - worldAt(b, zb));
-    }
+    // Central unless a side jumps by more than two globule radii (another sheet, or
+    // nothing): a choice by the sides' ratio alternated from pixel to pixel on a slope.
+    float jump = 2.0 * uEdgeThickness;
+    bool okA = za > 0.0 && da < jump, okB = zb > 0.0 && db < jump;
+    if (okA && okB) return 0.5 * (worldAt(a, za) - worldAt(b, zb));
+    if (okA != okB) return okA ? worldAt(a, za) - at : at - worldAt(b, zb);
     bool useA = za > 0.0 && (zb <= 0.0 || da <= db);
     if (useA) return worldAt(a, za) - at;
     if (zb > 0.0) return at - worldAt(b, zb);

@@ -211,13 +211,13 @@ TEST(LiquidRender, FluidBlockOfGlobulesHasAFlatTop) {
     Renderer renderer(160, 120, 1, 1024, true);
     renderer.drawFluid(g, s);
     double covered = 0;
-    const double smooth = flatFraction(renderer.lastFrame(), 8, covered);
+    const double smooth = flatFraction(renderer.lastFrame(), 2, covered);
     EXPECT_EQ(covered, 1.0) << "the top must be one surface, without holes";
     EXPECT_GT(smooth, 0.97);
     // The bare spheres (no smoothing) are bumpy: the test can tell.
     s.render.fluidSmoothing = 0;
     renderer.drawFluid(g, s);
-    EXPECT_LT(flatFraction(renderer.lastFrame(), 8, covered), 0.6);
+    EXPECT_LT(flatFraction(renderer.lastFrame(), 2, covered), 0.6);
 }
 
 TEST(LiquidRender, FluidLeavesOpaqueMaterialsAsSpheres) {
