@@ -10,6 +10,7 @@
 #include <EGL/eglext.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <mutex>
 #include <string>
 
@@ -47,9 +48,13 @@ std::string hexError(Egl& egl) {
 
 /// Loads libEGL and creates the context; on failure leaves egl.failure set.
 void create(Egl& egl) {
-    void* library = dlopen("libEGL.so.1", RTLD_NOW | RTLD_LOCAL);
+    // GLOBULAR_EGL_LIBRARY names another library (a vendor's libEGL; tests name a missing
+    // one to see the error).
+    const char* override = std::getenv("GLOBULAR_EGL_LIBRARY");
+    const std::string name = override && *override ? override : "libEGL.so.1";
+    void* library = dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!library) {
-        egl.failure = "libEGL.so.1 cannot be loaded (" + std::string(dlerror()) +
+        egl.failure = name + " cannot be loaded (" + std::string(dlerror()) +
                       "; Debian: apt install libegl1 libegl-mesa0)";
         return;
     }

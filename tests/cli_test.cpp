@@ -237,6 +237,29 @@ TEST_F(CliTest, TemperatureTravelsThroughEveryStage) {
     EXPECT_EQ(again.status, 0) << again.err;
 }
 
+TEST_F(CliTest, GlBackendIsChosenAtRunTimeAndAMissingEglIsNamed) {
+    writeScene("drop.toml",
+               "[simulation]\nframes = 2\n[[emitter]]\ncount = 20\n"
+               "[render]\nwidth = 96\nheight = 54\n");
+    ASSERT_EQ(run("run drop.toml --out osmesa --stages sim,render").status, 0);
+    // EGL surfaceless draws the same frame as OSMesa (both llvmpipe here).
+    const RunResult egl = run("run drop.toml --out egl --stages sim,render --set render.gl=egl");
+    ASSERT_EQ(egl.status, 0) << egl.err;
+    EXPECT_EQ(readFile(mDir / "egl/frames/frame.0002.png"),
+              readFile(mDir / "osmesa/frames/frame.0002.png"));
+    // Without libEGL the run fails, naming the back end and the library.
+    const RunResult missing = run("run drop.toml --out osmesa --stages render",
+                                  "GLOBULAR_GL=egl GLOBULAR_EGL_LIBRARY=libglobular_no_egl.so.1");
+    EXPECT_NE(missing.status, 0);
+    EXPECT_NE(missing.err.find("OpenGL back end \"egl\""), std::string::npos) << missing.err;
+    EXPECT_NE(missing.err.find("libglobular_no_egl.so.1 cannot be loaded"), std::string::npos)
+        << missing.err;
+    // A value GLOBULAR_GL does not know is an error naming it.
+    const RunResult bad = run("run drop.toml --out osmesa --stages render", "GLOBULAR_GL=vulkan");
+    EXPECT_NE(bad.status, 0);
+    EXPECT_NE(bad.err.find("GLOBULAR_GL"), std::string::npos) << bad.err;
+}
+
 }  // namespace
 }  // namespace globular
 
