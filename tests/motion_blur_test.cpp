@@ -239,6 +239,41 @@ TEST(MotionBlur, MovesAMeshAlongItsVerticesVelocities) {
     EXPECT_NEAR(columnExtent(renderer.lastFrame()), columnExtent(sharp), 1);
 }
 
+TEST(MotionBlur, SmearsTheFluidModesLiquidAlongItsVelocity) {
+    // A blob of 7 globules moving right at 100 units/s: 2 units over a half-frame shutter
+    // at 25 fps.
+    Globules g;
+    for (int k = -3; k <= 3; ++k) g.add({0.4 * k, 0, 0}, {100, 0, 0}, 1.0f, 1, k + 3);
+    FrameSetup s = setup();
+    s.render.mode = "fluid";
+    Renderer renderer(kWidth, kHeight, 4, 1024);
+    renderer.drawFluid(g, s);
+    const LinearFrame sharp = renderer.lastFrame();
+    s.render.motionBlur = true;
+    s.render.motionSamples = 16;
+    renderer.drawFluid(g, s);
+    // The liquid's edges fade (fluid_pass.h), so compare the alpha's second moment along
+    // x rather than its extent: the smear adds the variance of the sub-frames' offsets,
+    // N midpoints over a travel L: L^2 (N^2 - 1) / (12 N^2).
+    auto varianceX = [](const LinearFrame& f) {
+        double sum = 0, sx = 0, sxx = 0;
+        for (int y = 0; y < f.height; ++y) {
+            for (int x = 0; x < f.width; ++x) {
+                const double a = alpha(f, x, y);
+                sum += a;
+                sx += a * x;
+                sxx += a * double(x) * x;
+            }
+        }
+        return sxx / sum - (sx / sum) * (sx / sum);
+    };
+    const double travel = 2.0 * focalPixels() / kEyeDistance;  // pixels
+    const double expected = travel * travel * (16.0 * 16 - 1) / (12 * 16 * 16);
+    ASSERT_GT(rowExtent(sharp), 20);
+    EXPECT_NEAR(varianceX(renderer.lastFrame()) - varianceX(sharp), expected, 0.1 * expected);
+    EXPECT_NEAR(columnExtent(renderer.lastFrame()), columnExtent(sharp), 2);
+}
+
 /// The second moment of the alpha about its centroid (x and y together), pixels^2, over
 /// columns [x0, x1).
 double spread(const LinearFrame& f, int x0, int x1) {
