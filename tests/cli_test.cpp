@@ -15,7 +15,10 @@
 
 #include "cli_runner.h"
 #include "errors.h"
+#include "frame_paths.h"
 #include "globule_cache.h"
+#include "render_plan.h"
+#include "transform.h"
 #include "surface_frame.h"
 #include "surface_grids.h"
 #include "reporter.h"
@@ -235,6 +238,39 @@ TEST_F(CliTest, TemperatureTravelsThroughEveryStage) {
     // The resolved scene runs again as it is.
     const RunResult again = run("run out/scene.toml --out again --stages sim");
     EXPECT_EQ(again.status, 0) << again.err;
+}
+
+/// How much of a 16:9 image the globule centres of frame @p f span, seen by the camera
+/// the run planned: the larger of the fractions of its width and of its height.
+double subjectShare(const fs::path& out, int f) {
+    const RenderPlan plan = readRenderPlan(renderPlanPath(out));
+    const Globules g = readGlobuleVdb(cacheVdbPath(out, f));
+    const Mat4 m = perspective(plan.camera.fov, 16.0 / 9.0, 0.01, 1e4) *
+                   lookAt(plan.camera.position, plan.camera.target);
+    double left = 1e300, right = -1e300, bottom = 1e300, top = -1e300;
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        const Vec4 c = transformPoint(m, g.position(i));
+        left = std::min(left, c.x / c.w);
+        right = std::max(right, c.x / c.w);
+        bottom = std::min(bottom, c.y / c.w);
+        top = std::max(top, c.y / c.w);
+    }
+    return std::max(right - left, top - bottom) / 2;
+}
+
+TEST_F(CliTest, AutomaticCameraKeepsTheShippedScenesSubjectLarge) {
+    // The default scene's pour into the glass and the paper's helix, the first frames of
+    // each: the automatic camera (the render plan's) shows them large, never a speck.
+    const std::string paper = std::string(GLOBULAR_SOURCE_DIR) + "/scenes/paper/";
+    const std::string few = " --stages sim,plan --set simulation.frames=12 --set render.mode=spheres";
+    // The pour reaches the glass's floor by frame 40 (1.6 s).
+    ASSERT_EQ(run("run --out default --stages sim,plan --set simulation.frames=40 "
+                  "--set render.mode=spheres").status, 0);
+    EXPECT_GT(subjectShare(mDir / "default", 40), 0.4);
+    ASSERT_EQ(run("run " + quote(paper + "liquid.toml") + " --out helix" + few).status, 0);
+    EXPECT_GT(subjectShare(mDir / "helix", 12), 0.7);
+    ASSERT_EQ(run("run " + quote(paper + "powder.toml") + " --out powder" + few).status, 0);
+    EXPECT_GT(subjectShare(mDir / "powder", 12), 0.5);
 }
 
 TEST_F(CliTest, GlBackendIsChosenAtRunTimeAndAMissingEglIsNamed) {
