@@ -176,6 +176,29 @@ BENCHMARK(BM_FrameOutput)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+// Motion blur and depth of field at 1920x1080: motion_samples = 8 sub-frames of 1e5
+// spheres of the pour (each a full render) and their accumulation; against BM_Spheres
+// at the same size, what the accumulation adds beyond 8 renders.
+void subFrameSpheres(benchmark::State& state, bool lens) {
+    const int height = 1080, width = 1920;
+    const Globules g = renderBenchPour(std::size_t(state.range(0)));
+    SceneExtent extent;
+    extent.addFrame(g);
+    FrameSetup setup = setupFor(extent, width, height, "speed");
+    setup.frameSeconds = 1.0 / 25;
+    setup.render.motionSamples = 8;
+    setup.render.motionBlur = !lens;
+    setup.render.aperture = lens ? 0.01 * length(setup.camera.position - setup.camera.target) : 0;
+    Renderer renderer(width, height, 4);
+    renderer.drawSpheres(g, setup);
+    timeFrames(state, [&] { benchmark::DoNotOptimize(renderer.drawSpheres(g, setup)); });
+    state.counters["globules"] = double(g.size());
+}
+void BM_MotionBlur(benchmark::State& state) { subFrameSpheres(state, false); }
+BENCHMARK(BM_MotionBlur)->Arg(100000)->ArgName("n")->Unit(benchmark::kMillisecond)->UseRealTime();
+void BM_DepthOfField(benchmark::State& state) { subFrameSpheres(state, true); }
+BENCHMARK(BM_DepthOfField)->Arg(100000)->ArgName("n")->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // The liquid look at 1920x1080, 4 samples: render.mode = "fluid" straight from the
 // globules of the pour (splatting, smoothing, thickness and shading), and a mesh drawn
 // as a liquid (its thickness pass, then its front faces refracting the ground).
