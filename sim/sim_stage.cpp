@@ -112,10 +112,8 @@ void runSimStage(const SimulationSetup& setup, const SimStageOptions& options,
     };
     checkMemory(Simulation::plannedCount(setup));
     Simulation sim(setup);
-    std::string paths;
-    for (SimdPath p : supportedSimdPaths()) paths += std::string(paths.empty() ? "" : ", ") + simdPathName(p);
     ctx.report().info(std::string("sim: force kernels ") + simdPathName(sim.simdPath()) +
-                      " (this CPU runs " + paths + "; GLOBULAR_SIMD chooses)");
+                      " (this CPU runs " + supportedSimdPathNames() + "; GLOBULAR_SIMD chooses)");
     checkMemory(sim.plannedCount());  // now with the points files' globules
     std::vector<FrameStats> stats;
     int done = options.resume ? resumeFrom(sim, setup, options, ctx, stats) : 0;

@@ -46,6 +46,12 @@ std::vector<SimdPath> supportedSimdPaths() {
     return paths;
 }
 
+std::string supportedSimdPathNames() {
+    std::string names;
+    for (SimdPath p : supportedSimdPaths()) names += std::string(names.empty() ? "" : ", ") + simdPathName(p);
+    return names;
+}
+
 SimdPath chooseSimdPath(const char* environmentValue) {
     const std::string value = environmentValue ? environmentValue : "";
     if (value.empty() || value == "auto") return supportedSimdPaths().back();
@@ -55,11 +61,9 @@ SimdPath chooseSimdPath(const char* environmentValue) {
                     ": expected auto, scalar, avx2 or avx512");
     }
     if (!simdPathSupported(*path)) {
-        std::string runs;
-        for (SimdPath p : supportedSimdPaths()) runs += std::string(runs.empty() ? "" : ", ") + simdPathName(p);
         throw Error("GLOBULAR_SIMD=" + value + ": this CPU lacks " +
                     (*path == SimdPath::Avx2 ? "AVX2 and FMA" : "AVX-512 (F, BW, VL, DQ)") +
-                    "; it runs " + runs);
+                    "; it runs " + supportedSimdPathNames());
     }
     return *path;
 }

@@ -30,6 +30,9 @@ bool simdPathSupported(SimdPath path);
 /// The paths this CPU runs, slowest first.
 std::vector<SimdPath> supportedSimdPaths();
 
+/// Their names, "scalar, avx2, avx512" (for messages and the run's log).
+std::string supportedSimdPathNames();
+
 /// The path for a GLOBULAR_SIMD value (null or "auto": the fastest this CPU runs).
 /// @throw Error naming the variable and value when it names no path or one this CPU
 ///        lacks.
