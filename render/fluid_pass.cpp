@@ -62,7 +62,11 @@ FluidPass::FluidPass()
       mY(gl::makeBuffer()),
       mZ(gl::makeBuffer()),
       mRadius(gl::makeBuffer()),
-      mMaterial(gl::makeBuffer()) {
+      mMaterial(gl::makeBuffer()),
+      mVx(gl::makeBuffer()),
+      mVy(gl::makeBuffer()),
+      mVz(gl::makeBuffer()),
+      mVelocity(gl::makeTexture()) {
     float pointSizes[2] = {1, 64};
     glGetFloatv(GL_POINT_SIZE_RANGE, pointSizes);
     mMaxSprite = std::min(250.0f, pointSizes[1] - 2.0f);
@@ -77,7 +81,7 @@ FluidPass::FluidPass()
     gl::checkErrors("setting up the fluid passes");
 }
 
-void FluidPass::upload(const Globules& g) {
+void FluidPass::upload(const Globules& g, bool velocities) {
     const std::size_t n = g.size();
     if (g.py.size() != n || g.pz.size() != n || g.radius.size() != n) {
         throw Error("render: the globules' arrays have different lengths");
@@ -97,6 +101,19 @@ void FluidPass::upload(const Globules& g) {
     }
     mMeanRadius = finite > 0 ? sum / double(finite) : 1.0;
     glBindVertexArray(mPoints.id());
+    const bool moving = velocities && g.vx.size() == n && g.vy.size() == n && g.vz.size() == n;
+    const gl::Buffer* velocity[] = {&mVx, &mVy, &mVz};
+    const std::vector<float>* components[] = {&g.vx, &g.vy, &g.vz};
+    for (GLuint i = 0; i < 3; ++i) {
+        if (moving && n > 0) {
+            uploadFloats(*velocity[i], components[i]->data(), n);
+            glVertexAttribPointer(6 + i, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
+            glEnableVertexAttribArray(6 + i);
+        } else {
+            glDisableVertexAttribArray(6 + i);
+            glVertexAttrib1f(6 + i, 0);
+        }
+    }
     if (g.material.size() == n && n > 0) {
         glBindBuffer(GL_ARRAY_BUFFER, mMaterial.id());
         glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n), g.material.data(), GL_STREAM_DRAW);
@@ -135,8 +152,22 @@ void FluidPass::draw(const FrameUniforms& f, const FluidLook& look) {
 
     // 1. The front: view depth of the nearest sphere.
     mFront.bind(f.width, f.height, GL_R32F, true, false);
+    // ... with the nearest sphere's velocity beside it, for the motion pass.
+    if (mVelocityWidth != f.width || mVelocityHeight != f.height) {
+        mVelocityWidth = f.width;
+        mVelocityHeight = f.height;
+        glBindTexture(GL_TEXTURE_2D, mVelocity.id());
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, f.width, f.height, 0, GL_RGBA, GL_FLOAT, nullptr);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glBindTexture(GL_TEXTURE_2D, 0);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, mVelocity.id(), 0);
+    }
+    const GLenum both[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glDrawBuffers(2, both);
     const float none[] = {0, 0, 0, 0};
     glClearBufferfv(GL_COLOR, 0, none);
+    glClearBufferfv(GL_COLOR, 1, none);
     glClear(GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
@@ -203,6 +234,7 @@ void FluidPass::draw(const FrameUniforms& f, const FluidLook& look) {
     glUniform1i(mComposite.uniform("uDepths"), 3);
     glUniform1i(mComposite.uniform("uFront"), 4);
     glUniform1i(mComposite.uniform("uBack"), 5);
+    glUniform1i(mComposite.uniform("uVelocity"), 6);
     glUniform1f(mComposite.uniform("uEdgeThickness"), float(mMeanRadius));
     mBehind.bind(1);
     glActiveTexture(GL_TEXTURE2);
@@ -213,6 +245,8 @@ void FluidPass::draw(const FrameUniforms& f, const FluidLook& look) {
     glBindTexture(GL_TEXTURE_2D, mFront.texture.id());
     glActiveTexture(GL_TEXTURE5);
     glBindTexture(GL_TEXTURE_2D, mBack.texture.id());
+    glActiveTexture(GL_TEXTURE6);
+    glBindTexture(GL_TEXTURE_2D, mVelocity.id());
     glActiveTexture(GL_TEXTURE0);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);

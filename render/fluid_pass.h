@@ -33,8 +33,9 @@ struct FluidLook {
 class FluidPass {
   public:
     FluidPass();
-    /// Uploads positions, radii and materials.
-    void upload(const Globules& globules);
+    /// Uploads positions, radii, materials and, with @p velocities (the motion pass),
+    /// velocities.
+    void upload(const Globules& globules, bool velocities);
     void drawShadow(const FrameUniforms& frame) const;
     /// Draws into the framebuffer bound for drawing (the frame target, @p frame's size),
     /// refracting what it holds; that framebuffer is bound again afterwards.
@@ -46,7 +47,9 @@ class FluidPass {
     float mMaxSprite;
     gl::Program mDepth, mThickness, mSmooth, mComposite, mShadow;
     gl::VertexArray mPoints, mEmpty;
-    gl::Buffer mX, mY, mZ, mRadius, mMaterial;
+    gl::Buffer mX, mY, mZ, mRadius, mMaterial, mVx, mVy, mVz;
+    gl::Texture mVelocity;  // the nearest sphere's velocity, beside mFront's depth
+    int mVelocityWidth = 0, mVelocityHeight = 0;
     BehindTexture mBehind;
     TextureTarget mFront, mBack, mDepths, mPing, mPong;
     std::size_t mCount = 0;

@@ -128,6 +128,9 @@ layout(location = 2) in float aY;
 layout(location = 3) in float aZ;
 layout(location = 4) in float aRadius;
 layout(location = 5) in uint aMaterial;
+layout(location = 6) in float aVx;  // velocity, world units/s (0 without the motion pass)
+layout(location = 7) in float aVy;
+layout(location = 8) in float aVz;
 uniform mat4 uView;
 uniform mat4 uViewProj;
 uniform vec2 uFocalPixels;  // pixels per unit of x/depth and y/depth
@@ -138,6 +141,7 @@ uniform int uLiquid[16];    // 0: the material is drawn opaque, not here
 flat out vec3 vCenter;
 flat out float vRadius;
 flat out vec3 vSigma;
+flat out vec3 vVelocity;
 
 // As the sphere sprites (sphere_shaders.cpp): half the projection's extent along an axis.
 float axisHalfExtent(float a, float depth, float r) {
@@ -153,6 +157,7 @@ void main() {
     vCenter = c;
     vRadius = aRadius;
     vSigma = uSigma[material];
+    vVelocity = vec3(aVx, aVy, aVz);
     vec3 v = (uView * vec4(c, 1.0)).xyz;
     float depth = -v.z;
     float size = 1e9;
@@ -171,10 +176,12 @@ std::string fluidDepthFragment() {
 flat in vec3 vCenter;
 flat in float vRadius;
 flat in vec3 vSigma;
+flat in vec3 vVelocity;
 uniform vec3 uEye;
 uniform mat4 uViewProj;
 uniform float uSide;  // -1: the spheres' fronts (nearest kept); +1: their backs (farthest)
 layout(location = 0) out float fragViewDepth;
+layout(location = 1) out vec4 fragVelocity;  // the fronts' pass only
 void main() {
     vec3 dir = cameraRay(gl_FragCoord.xy);
     vec3 toCenter = vCenter - uEye;
@@ -186,6 +193,7 @@ void main() {
     vec4 clip = uViewProj * vec4(uEye + t * dir, 1.0);
     gl_FragDepth = 0.5 + 0.5 * clip.z / clip.w;
     fragViewDepth = t * dot(dir, uCamForward);
+    fragVelocity = vec4(vVelocity, 1.0);
 }
 )";
 }
@@ -256,6 +264,7 @@ uniform sampler2D uSmoothed;   // view depth, unit 2
 uniform sampler2D uDepths;     // optical depth rgb and chord sum, unit 3 (coarser)
 uniform sampler2D uFront;      // view depth of the nearest front, unit 4
 uniform sampler2D uBack;       // view depth of the farthest back, unit 5
+uniform sampler2D uVelocity;   // the nearest sphere's velocity, unit 6
 uniform float uEdgeThickness;  // world units
 uniform mat4 uViewProj;
 layout(location = 0) out vec4 fragColor;
@@ -316,7 +325,7 @@ void main() {
     fragColor = mix(textureLod(uBehind, uv, 0.0), liquidShade(at, n, dir, thickness, sigma), edge);
     vec4 clip = uViewProj * vec4(at, 1.0);
     gl_FragDepth = 0.5 + 0.5 * clip.z / clip.w;
-    writePasses(at, n, vec3(0.0), 1.0);
+    writePasses(at, n, texelFetch(uVelocity, p, 0).xyz, 1.0);
 }
 )");
 }

@@ -142,8 +142,8 @@ void RenderSettings::describe(SettingsSection& s) {
     s.integer("png_bits", pngBits, 8, 16, "bits per channel of the PNG frames: 8 or 16 (sRGB)");
     s.flag("exr", exr,
            "also write frames/frame.NNNN.exr: half-float linear RGBA (premultiplied), float Z "
-           "(distance from the eye), half N.x N.y N.z (world-space normal) and, for spheres, "
-           "forward.u forward.v (screen motion over one frame, pixels)");
+           "(distance from the eye), half N.x N.y N.z (world-space normal) and, for spheres and "
+           "the fluid, forward.u forward.v (screen motion over one frame, pixels)");
     s.number("fluid_smoothing", fluidSmoothing, {0, 20},
              "mode = \"fluid\": reach of the filter that smooths the globules' spheres into "
              "one surface, in globule radii (0 = the bare spheres)");

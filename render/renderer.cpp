@@ -474,10 +474,10 @@ Image Renderer::Impl::drawFluid(const Globules& globules, const FrameSetup& setu
         const Globules& globules;
         const Globules& opaque;  // drawn as spheres, behind the liquid's refraction
         const detail::FluidLook& look;
-        bool spheres() const { return false; }
+        bool spheres() const { return true; }  // globules: they have a motion pass
         bool liquid() const { return true; }
         void prepare(const FrameUniforms& f) {
-            im.fluid->upload(globules);
+            im.fluid->upload(globules, f.frameSeconds > 0);
             if (!opaque.empty()) im.spheres->upload(opaque, detail::SpherePass::Value::None, f);
         }
         void shadow(const FrameUniforms& f) {

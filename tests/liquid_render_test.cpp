@@ -220,6 +220,27 @@ TEST(LiquidRender, FluidBlockOfGlobulesHasAFlatTop) {
     EXPECT_LT(flatFraction(renderer.lastFrame(), 2, covered), 0.6);
 }
 
+TEST(LiquidRender, FluidMotionPassIsTheScreenShiftOfItsGlobulesOverOneFrame) {
+    // A globule of radius 1 at 10 units/s across the view, 9 units in front of the eye:
+    // over 1/25 s its front moves 0.4 units, 0.4 x focal / 9 pixels to the right.
+    Globules g;
+    g.add({0, 1, 0}, {10, 0, 0}, 1.0f, 1.0f, 0);
+    FrameSetup s;
+    s.camera = {{0, 1, 10}, {0, 1, 0}, 40};
+    s.lights = {};
+    s.frameSeconds = 0.04;
+    s.render.fluidSmoothing = 0;  // the bare sphere: its front is 9 units away, exactly
+    constexpr int kW = 97, kH = 65;  // odd: the centre pixel looks at the globule's front
+    Renderer renderer(kW, kH, 1, 1024, true);
+    renderer.drawFluid(g, s);
+    const LinearFrame& f = renderer.lastFrame();
+    ASSERT_EQ(f.motion.size(), std::size_t(kW) * kH * 2);
+    const std::size_t centre = std::size_t(kH / 2) * kW + kW / 2;
+    const double focal = 0.5 * kH / std::tan(20 * std::numbers::pi / 180);  // pixels
+    EXPECT_NEAR(f.motion[2 * centre], 0.4 * focal / 9, 0.05);
+    EXPECT_NEAR(f.motion[2 * centre + 1], 0, 0.05);
+}
+
 TEST(LiquidRender, FluidLeavesOpaqueMaterialsAsSpheres) {
     // Material 1 looks opaque: its globule is drawn as a shaded sphere, not as liquid.
     Globules g;
