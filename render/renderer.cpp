@@ -474,11 +474,12 @@ Image Renderer::Impl::drawFluid(const Globules& globules, const FrameSetup& setu
         const Globules& globules;
         const Globules& opaque;  // drawn as spheres, behind the liquid's refraction
         const detail::FluidLook& look;
+        detail::SpherePass::Value value;  // the opaque spheres' colour by color_by
         bool spheres() const { return true; }  // globules: they have a motion pass
         bool liquid() const { return true; }
         void prepare(const FrameUniforms& f) {
             im.fluid->upload(globules, f.frameSeconds > 0);
-            if (!opaque.empty()) im.spheres->upload(opaque, detail::SpherePass::Value::None, f);
+            if (!opaque.empty()) im.spheres->upload(opaque, value, f);
         }
         void shadow(const FrameUniforms& f) {
             im.fluid->drawShadow(f);
@@ -494,14 +495,24 @@ Image Renderer::Impl::drawFluid(const Globules& globules, const FrameSetup& setu
     };
     const Globules opaque = opaqueGlobules(globules, s.materialOptics);
     if (!opaque.empty() && !spheres) spheres.emplace(samples);
+    using Value = detail::SpherePass::Value;
+    const std::string& by = s.render.colorBy;
+    if (by == "temperature" && opaque.temperature.size() != opaque.size()) {
+        throw Error("render: color_by = \"temperature\" but the globules carry no temperature "
+                    "(the scene has no [thermal] section)");
+    }
+    const Value value = by == "speed"         ? Value::Speed
+                        : by == "material"    ? Value::Material
+                        : by == "temperature" ? Value::Temperature
+                                              : Value::None;
     if (spheres) spheres->setCulling(culling);
     return accumulate(s, [&](const FrameSetup& sub, double seconds) {
         if (seconds == 0) {
-            draw(sub, own.box, Content{*this, globules, opaque, look});
+            draw(sub, own.box, Content{*this, globules, opaque, look, value});
         } else {
             const Globules moved = movedBy(globules, seconds);
             const Globules movedOpaque = movedBy(opaque, seconds);
-            draw(sub, own.box, Content{*this, moved, movedOpaque, look});
+            draw(sub, own.box, Content{*this, moved, movedOpaque, look, value});
         }
     });
 }

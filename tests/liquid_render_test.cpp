@@ -264,6 +264,13 @@ TEST(LiquidRender, FluidLeavesOpaqueMaterialsAsSpheres) {
     const Vec3 liquid = at({-3, 1, 0}), sphere = at({3, 1, 0});
     EXPECT_GT(sphere.x, 2 * sphere.z) << "the opaque globule is the red of render.color";
     EXPECT_GT(liquid.z, liquid.x) << "the liquid one is clear, tinted blue by absorption";
+    // color_by = material colours the opaque spheres by their material.
+    s.render.colorBy = "material";
+    s.materialColors = {{0, 0, 1}, {0, 1, 0}};
+    renderer.drawFluid(g, s);
+    const Vec3 green = at({3, 1, 0});
+    EXPECT_GT(green.y, 2 * green.x);
+    EXPECT_GT(green.y, 2 * green.z);
 }
 
 }  // namespace
