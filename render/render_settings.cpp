@@ -78,8 +78,9 @@ void RenderSettings::describe(SettingsSection& s) {
     s.integer("height", height, 16, 16384, "image height, pixels");
     s.choice("mode", mode, {"spheres", "surface", "fluid"},
              "spheres: each globule a shaded sphere of its radius; surface: the surfacing "
-             "stage's mesh (a liquid when every [material] looks liquid); fluid: a liquid "
-             "surface straight from the globules, in screen space (no surface stage)");
+             "stage's mesh (a liquid when every [material] looks liquid and color_by = "
+             "\"constant\"); fluid: a liquid surface straight from the globules, in screen "
+             "space (no surface stage)");
     s.integer("samples", samples, 1, 16, "multisample anti-aliasing samples per pixel (1 = off)");
     s.choice("color_by", colorBy, {"constant", "speed", "height", "material", "temperature"},
              "colour by the constant color, by speed or height through a colour ramp, by "

@@ -176,8 +176,11 @@ FrameSetup frameSetup(const RenderJob& job, const RenderPlan& plan) {
     setup.materialColors = job.materialColors;
     setup.materialLooks = job.materialLooks;
     setup.materialOptics = job.materialOptics;
-    // A mesh has one look: liquid when every material is one.
-    setup.liquidSurface = job.render.mode == "surface" && !job.materialOptics.empty() &&
+    // A mesh has one look: liquid when every material is one, and when no colour codes a
+    // value (color_by height, material or temperature keep the opaque, coloured surface,
+    // so the values read).
+    setup.liquidSurface = job.render.mode == "surface" && job.render.colorBy == "constant" &&
+                          !job.materialOptics.empty() &&
                           std::all_of(job.materialOptics.begin(), job.materialOptics.end(),
                                       [](const LiquidOptics& o) { return o.liquid; });
     setup.frameSeconds = job.fps > 0 ? 1.0 / job.fps : 0;
