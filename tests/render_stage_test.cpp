@@ -229,6 +229,30 @@ TEST(RenderStage, FluidModeDrawsTheCachesAsALiquid) {
     EXPECT_GT(differ, 40) << "the liquid is not the opaque spheres";
 }
 
+TEST(RenderStage, SurfaceIsALiquidWhenItsMaterialsAreAndNoColourCodesAValue) {
+    TriangleMesh mesh;
+    mesh.positions = {-2, 0.5, -2, 2, 0.5, -2, 0, 3, 0};
+    mesh.triangles = {0, 2, 1, 0, 1, 2};  // both sides: one faces the camera
+    auto draw = [&](const std::string& name, const std::string& colorBy, bool liquid) {
+        const fs::path dir = freshDir(name);
+        writeMeshPly(meshPath(dir, 1, "ply"), mesh);
+        RenderJob job = smallJob();
+        job.render.mode = "surface";
+        job.render.colorBy = colorBy;
+        job.materialOptics = {LiquidOptics{liquid, {0.3, 0.09, 0.035}, 1.33}};
+        RecordingReporter reporter("render");
+        runRenderStage(job, context(dir, 1, 1, reporter));
+        return readPng(framePngPath(dir, 1));
+    };
+    auto differing = [](const Image& a, const Image& b) {
+        int n = 0;
+        for (std::size_t i = 0; i < a.rgba.size(); ++i) n += std::abs(a.rgba[i] - b.rgba[i]) > 12;
+        return n;
+    };
+    EXPECT_GT(differing(draw("liquid", "constant", true), draw("opaque", "constant", false)), 40);
+    EXPECT_EQ(differing(draw("coded", "height", true), draw("coded_opaque", "height", false)), 0);
+}
+
 TEST(RenderStage, MovieNeedsFfmpegOnPath) {
     const fs::path dir = freshDir("movie");
     writeCaches(dir, 1, 3);
