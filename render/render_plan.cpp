@@ -18,6 +18,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Part of the fingerprint: raise it whenever what a plan measures, or how (autoFrame, the
+// ramp's range), changes, so plans an older build measured are measured again.
 constexpr int kFormat = 1;
 // A plan is a few hundred bytes plus the contact sheet's frame list.
 constexpr uint64_t kMaxPlanBytes = 1 << 20;
