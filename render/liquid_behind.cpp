@@ -47,7 +47,6 @@ void applyLiquidUniforms(const gl::Program& p, const FrameUniforms& f, const Liq
     glUniform1i(p.uniform("uGroundDrawn"), look.ground ? 1 : 0);
     glUniform1f(p.uniform("uGroundHeight"), float(look.groundHeight));
     setMat4(p, "uBehindViewProj", f.viewProj);
-    setVec3(p, "uLiquidSky", look.sky);
 }
 
 void TextureTarget::bind(int w, int h, GLenum format, bool withDepth, bool linear) {

@@ -14,7 +14,6 @@ struct LiquidLook {
     double ior = 1.33;
     bool ground = true;       ///< the ground plane is drawn
     double groundHeight = 0;  ///< world units
-    Vec3 sky;                 ///< linear; reflected while the shared library has no environment
 };
 
 class BehindTexture {

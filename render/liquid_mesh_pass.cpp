@@ -22,13 +22,7 @@ LiquidMeshPass::LiquidMeshPass()
 
 void LiquidMeshPass::upload(const MeshView& mesh) {
     const std::size_t indexCount = mesh.triangleCount * 3;
-    if (indexCount > 0) {
-        const uint32_t largest = *std::max_element(mesh.triangles, mesh.triangles + indexCount);
-        if (largest >= mesh.vertexCount) {
-            throw Error("render: mesh triangle index " + std::to_string(largest) +
-                        " is out of range (" + std::to_string(mesh.vertexCount) + " vertices)");
-        }
-    }
+    checkTriangleIndices(mesh);
     mIndexCount = indexCount;
     mClosed = mesh.closed;
     glBindVertexArray(mVertexArray.id());

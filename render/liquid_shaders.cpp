@@ -7,27 +7,6 @@ namespace globular::shaders {
 
 namespace {
 
-// The eye ray through a window position (as the sphere passes compute it).
-const char* const kRay = R"(
-uniform vec3 uCamForward;  // unit view direction
-uniform vec3 uCamRight;    // scaled so that +-1 reaches the image's right and left edges
-uniform vec3 uCamUp;       // ... and its top and bottom edges
-uniform vec2 uViewport;    // pixels
-vec3 cameraRay(vec2 windowPosition) {
-    vec2 ndc = windowPosition / uViewport * 2.0 - 1.0;
-    return normalize(uCamForward + ndc.x * uCamRight + ndc.y * uCamUp);
-}
-)";
-
-// Used only while the shared library has no environment (shaders.cpp): the sky as the
-// background colour, darker below the horizon where the ground is.
-const char* const kEnvironmentFallback = R"(
-uniform vec3 uLiquidSky;  // linear
-vec3 environmentRadiance(vec3 worldDirection, float roughness) {
-    return uLiquidSky * mix(0.45, 1.0, smoothstep(-0.1, 0.1, worldDirection.y));
-}
-)";
-
 // The liquid's look at a point of its front surface.
 const char* const kLiquid = R"(
 uniform sampler2D uBehind;  // what lies behind the liquid: the frame drawn so far, resolved
@@ -97,18 +76,9 @@ vec4 liquidShade(vec3 p, vec3 n, vec3 dir, float depth, vec3 sigma) {
 )";
 
 std::string liquidFragment(const std::string& body) {
-    const std::string shared = fragment("");
-    const bool hasEnvironment = shared.find("vec3 environmentRadiance(") != std::string::npos;
-    return fragment(std::string(kRay) + (hasEnvironment ? "" : kEnvironmentFallback) +
+    return fragment(cameraRayLibrary() +
                     "const float PI_LIQUID = 3.14159265358979;\n" + kLiquid + body);
 }
-
-const char* const kBadGlobule = R"(
-bool drawable(vec3 c, float r) {
-    return r > 0.0 && !isinf(r) && !any(isnan(c)) && !any(isinf(c));
-}
-const vec4 kNowhere = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: not drawn
-)";
 
 }  // namespace
 
@@ -122,7 +92,7 @@ void main() {
 }
 
 std::string fluidPointVertex() {
-    return version() + kBadGlobule + R"(
+    return version() + globuleSpriteLibrary() + R"(
 layout(location = 1) in float aX;
 layout(location = 2) in float aY;
 layout(location = 3) in float aZ;
@@ -143,13 +113,6 @@ flat out float vRadius;
 flat out vec3 vSigma;
 flat out vec3 vVelocity;
 
-// As the sphere sprites (sphere_shaders.cpp): half the projection's extent along an axis.
-float axisHalfExtent(float a, float depth, float r) {
-    float c = a / depth;
-    float tanAlpha = r / sqrt(max(a * a + depth * depth - r * r, 1e-30));
-    float denominator = 1.0 - abs(c) * tanAlpha;
-    return denominator > 0.02 ? tanAlpha * (1.0 + c * c) / denominator : 1e9;
-}
 
 void main() {
     vec3 c = vec3(aX, aY, aZ);
@@ -172,7 +135,7 @@ void main() {
 }
 
 std::string fluidDepthFragment() {
-    return version() + kRay + R"(
+    return version() + cameraRayLibrary() + R"(
 flat in vec3 vCenter;
 flat in float vRadius;
 flat in vec3 vSigma;
@@ -199,7 +162,7 @@ void main() {
 }
 
 std::string fluidThicknessFragment() {
-    return version() + kRay + R"(
+    return version() + cameraRayLibrary() + R"(
 flat in vec3 vCenter;
 flat in float vRadius;
 flat in vec3 vSigma;

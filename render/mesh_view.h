@@ -4,8 +4,12 @@
 // without a copy. @code MeshView view{m.positions.data(), m.normals.data(), m.positions.size() / 3,
 //                             m.triangles.data(), m.triangles.size() / 3, true}; @endcode
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <string>
+
+#include "errors.h"
 
 namespace globular {
 
@@ -30,5 +34,16 @@ struct MeshView {
     const float* vy = nullptr;
     const float* vz = nullptr;
 };
+
+/// @throw Error naming the largest triangle index when it is not below mesh.vertexCount.
+inline void checkTriangleIndices(const MeshView& mesh) {
+    const std::size_t indexCount = mesh.triangleCount * 3;
+    if (indexCount == 0) return;
+    const uint32_t largest = *std::max_element(mesh.triangles, mesh.triangles + indexCount);
+    if (largest >= mesh.vertexCount) {
+        throw Error("render: mesh triangle index " + std::to_string(largest) +
+                    " is out of range (" + std::to_string(mesh.vertexCount) + " vertices)");
+    }
+}
 
 }  // namespace globular

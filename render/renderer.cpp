@@ -423,11 +423,9 @@ Image Renderer::drawFluid(const Globules& globules, const FrameSetup& setup) {
 
 namespace {
 
-/// Where a liquid's refracted rays end, and what it reflects while the shared shading
-/// library has no environment.
+/// Where a liquid's refracted rays end.
 detail::LiquidLook liquidLook(const FrameSetup& s) {
-    return {opticsOf(s.materialOptics, 0).ior, s.render.ground, s.groundHeight,
-            srgbToLinear(s.render.background)};
+    return {opticsOf(s.materialOptics, 0).ior, s.render.ground, s.groundHeight};
 }
 
 /// The globules of materials drawn opaque (spheres among the liquid), none when all are

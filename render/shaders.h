@@ -23,6 +23,12 @@ std::string groundVertex();
 std::string groundFragment();
 
 // sphere_shaders.cpp
+/// cameraRay(windowPosition) through uCamForward/Right/Up and uViewport, and
+/// sphereHitDistance(): the eye ray and its meeting with a sphere.
+std::string cameraRayLibrary();
+/// drawable(centre, radius), kNowhere and axisHalfExtent(): sizing a globule's sprite
+/// to its sphere's exact screen extent.
+std::string globuleSpriteLibrary();
 std::string spherePointVertex();
 std::string sphereQuadVertex();
 std::string sphereVisibilityFragment();

@@ -39,9 +39,22 @@ bool drawable(vec3 c, float r) {
     return r > 0.0 && !isinf(r) && !any(isnan(c)) && !any(isinf(c));
 }
 const vec4 kNowhere = vec4(2.0, 2.0, 2.0, 1.0);  // outside the clip volume: not drawn
+
+// Half the extent, in x/depth units, of the sphere's projection along one axis, about
+// the projected centre c = a / depth: with tan(alpha) the tangent cone's half-angle,
+// tan(theta + alpha) - tan(theta) = tan(alpha) (1 + c^2) / (1 - |c| tan(alpha)).
+float axisHalfExtent(float a, float depth, float r) {
+    float c = a / depth;
+    float tanAlpha = r / sqrt(max(a * a + depth * depth - r * r, 1e-30));
+    float denominator = 1.0 - abs(c) * tanAlpha;
+    return denominator > 0.02 ? tanAlpha * (1.0 + c * c) / denominator : 1e9;
+}
 )";
 
 }  // namespace
+
+std::string cameraRayLibrary() { return kRayLibrary; }
+std::string globuleSpriteLibrary() { return kBadGlobule; }
 
 // Point sprites: one vertex per globule, the square sized to the exact screen extent of
 // the sphere (sphere_pass.cpp computes the same size to pick sprites or squares).
@@ -60,15 +73,6 @@ flat out vec3 vCenter;
 flat out float vRadius;
 flat out uint vId;
 
-// Half the extent, in x/depth units, of the sphere's projection along one axis, about
-// the projected centre c = a / depth: with tan(alpha) the tangent cone's half-angle,
-// tan(theta + alpha) - tan(theta) = tan(alpha) (1 + c^2) / (1 - |c| tan(alpha)).
-float axisHalfExtent(float a, float depth, float r) {
-    float c = a / depth;
-    float tanAlpha = r / sqrt(max(a * a + depth * depth - r * r, 1e-30));
-    float denominator = 1.0 - abs(c) * tanAlpha;
-    return denominator > 0.02 ? tanAlpha * (1.0 + c * c) / denominator : 1e9;
-}
 
 void main() {
     vec3 c = vec3(aX, aY, aZ);
