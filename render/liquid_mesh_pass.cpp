@@ -5,6 +5,7 @@
 
 #include "errors.h"
 #include "liquid_shaders.h"
+#include "mesh_pass.h"
 #include "shaders.h"
 
 namespace globular::detail {
@@ -26,20 +27,7 @@ void LiquidMeshPass::upload(const MeshView& mesh) {
     mIndexCount = indexCount;
     mClosed = mesh.closed;
     glBindVertexArray(mVertexArray.id());
-    const auto bytes = GLsizeiptr(mesh.vertexCount * 3 * sizeof(float));
-    glBindBuffer(GL_ARRAY_BUFFER, mPositions.id());
-    glBufferData(GL_ARRAY_BUFFER, bytes, mesh.positions, GL_STREAM_DRAW);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-    glEnableVertexAttribArray(0);
-    if (mesh.normals) {
-        glBindBuffer(GL_ARRAY_BUFFER, mNormals.id());
-        glBufferData(GL_ARRAY_BUFFER, bytes, mesh.normals, GL_STREAM_DRAW);
-        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-        glEnableVertexAttribArray(1);
-    } else {
-        glDisableVertexAttribArray(1);
-        glVertexAttrib3f(1, 0, 0, 0);  // the fragment shader then uses face normals
-    }
+    uploadMeshGeometry(mesh, mPositions, mNormals);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mIndices.id());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indexCount * sizeof(uint32_t)), mesh.triangles,
                  GL_STREAM_DRAW);

@@ -8,6 +8,24 @@
 
 namespace globular::detail {
 
+void uploadMeshGeometry(const MeshView& mesh, const gl::Buffer& positions,
+                        const gl::Buffer& normals) {
+    const auto bytes = GLsizeiptr(mesh.vertexCount * 3 * sizeof(float));
+    glBindBuffer(GL_ARRAY_BUFFER, positions.id());
+    glBufferData(GL_ARRAY_BUFFER, bytes, mesh.positions, GL_STREAM_DRAW);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glEnableVertexAttribArray(0);
+    if (mesh.normals) {
+        glBindBuffer(GL_ARRAY_BUFFER, normals.id());
+        glBufferData(GL_ARRAY_BUFFER, bytes, mesh.normals, GL_STREAM_DRAW);
+        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+        glEnableVertexAttribArray(1);
+    } else {
+        glDisableVertexAttribArray(1);
+        glVertexAttrib3f(1, 0, 0, 0);  // the fragment shader then uses face normals
+    }
+}
+
 MeshPass::MeshPass()
     : mProgram("mesh", shaders::meshVertex(), shaders::meshFragment()),
       mShadowProgram("mesh shadow", shaders::meshShadowVertex(), shaders::depthOnlyFragment()),
@@ -23,20 +41,7 @@ void MeshPass::upload(const MeshView& mesh) {
     checkTriangleIndices(mesh);
     mIndexCount = indexCount;
     glBindVertexArray(mVertexArray.id());
-    const auto bytes = GLsizeiptr(mesh.vertexCount * 3 * sizeof(float));
-    glBindBuffer(GL_ARRAY_BUFFER, mPositions.id());
-    glBufferData(GL_ARRAY_BUFFER, bytes, mesh.positions, GL_STREAM_DRAW);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-    glEnableVertexAttribArray(0);
-    if (mesh.normals) {
-        glBindBuffer(GL_ARRAY_BUFFER, mNormals.id());
-        glBufferData(GL_ARRAY_BUFFER, bytes, mesh.normals, GL_STREAM_DRAW);
-        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-        glEnableVertexAttribArray(1);
-    } else {
-        glDisableVertexAttribArray(1);
-        glVertexAttrib3f(1, 0, 0, 0);  // the fragment shader then uses face normals
-    }
+    uploadMeshGeometry(mesh, mPositions, mNormals);
     if (mesh.values) {
         glBindBuffer(GL_ARRAY_BUFFER, mValues.id());
         glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.vertexCount * sizeof(float)), mesh.values,

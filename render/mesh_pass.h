@@ -8,6 +8,11 @@
 
 namespace globular::detail {
 
+/// Uploads the mesh's positions (attribute 0) and normals (attribute 1; without them
+/// (0, 0, 0), so the fragment shaders use face normals) into the bound vertex array.
+void uploadMeshGeometry(const MeshView& mesh, const gl::Buffer& positions,
+                        const gl::Buffer& normals);
+
 class MeshPass {
   public:
     MeshPass();
