@@ -9,24 +9,13 @@
 #include "errors.h"
 #include "recording_reporter.h"
 #include "scene.h"
+#include "scene_text.h"
 
 namespace globular {
 namespace {
 
-Scene parse(const std::string& text) {
-    NullReporter quiet;
-    return parseScene(text, "glass.toml", {}, quiet);
-}
-
-std::string parseError(const std::string& text) {
-    try {
-        parse(text);
-    } catch (const SceneError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "expected a SceneError for:\n" << text;
-    return "";
-}
+Scene parse(const std::string& text) { return parseSceneText(text, "glass.toml"); }
+std::string parseError(const std::string& text) { return sceneErrorOf(text, "glass.toml"); }
 
 TEST(SceneColliders, NoneByDefaultAndEachSectionRead) {
     EXPECT_TRUE(parse("").colliders.empty());

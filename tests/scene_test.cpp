@@ -2,6 +2,7 @@
 // and key; --set overrides; warnings; defaults; the resolved scene round trip.
 
 #include "scene.h"
+#include "scene_text.h"
 
 #include <gtest/gtest.h>
 
@@ -25,22 +26,12 @@ namespace {
 namespace fs = std::filesystem;
 
 Scene parse(const std::string& text, const std::vector<std::string>& overrides = {}) {
-    NullReporter quiet;
-    return parseScene(text, "scene.toml", overrides, quiet);
+    return parseSceneText(text, "scene.toml", overrides);
 }
 
 /// The message of the SceneError that parsing throws; fails the test when none is thrown.
 std::string parseError(const std::string& text, const std::vector<std::string>& overrides = {}) {
-    try {
-        parse(text, overrides);
-    } catch (const SceneError& e) {
-        return e.what();
-    } catch (const std::exception& e) {
-        ADD_FAILURE() << "expected a SceneError, got another exception: " << e.what();
-        return "";
-    }
-    ADD_FAILURE() << "expected a SceneError for:\n" << text;
-    return "";
+    return sceneErrorOf(text, "scene.toml", overrides);
 }
 
 bool contains(const std::string& text, const std::string& part) {

@@ -9,24 +9,13 @@
 #include "errors.h"
 #include "reporter.h"
 #include "scene.h"
+#include "scene_text.h"
 
 namespace globular {
 namespace {
 
-Scene parse(const std::string& text) {
-    NullReporter quiet;
-    return parseScene(text, "lamp.toml", {}, quiet);
-}
-
-std::string parseError(const std::string& text) {
-    try {
-        parse(text);
-    } catch (const SceneError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "expected a SceneError for:\n" << text;
-    return "";
-}
+Scene parse(const std::string& text) { return parseSceneText(text, "lamp.toml"); }
+std::string parseError(const std::string& text) { return sceneErrorOf(text, "lamp.toml"); }
 
 const char* kWax =
     "[thermal]\nenabled = true\nambient = 15\ncooling = 0.2\n"
