@@ -44,6 +44,7 @@ void applyFrameUniforms(const gl::Program& p, const FrameUniforms& f) {
     glUniform1f(p.uniform("uSpecular"), f.specular);
     glUniform1fv(p.uniform("uMaterialRoughness"), 16, f.roughness.data());
     glUniform1fv(p.uniform("uMaterialMetallic"), 16, f.metallic.data());
+    glUniform1fv(p.uniform("uMaterialSubsurface"), 16, f.subsurface.data());
     setVec3Array(p, "uIrradianceSH", {f.irradianceSH.begin(), f.irradianceSH.end()});
     glUniform1i(p.uniform("uEnvironmentMap"), kEnvironmentUnit);
     glUniform1f(p.uniform("uEnvironmentMaxLod"), f.environmentMaxLod);

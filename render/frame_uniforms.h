@@ -25,6 +25,7 @@ struct FrameUniforms {
     float specular = 0;        ///< dielectrics' reflectance (f0 = 0.16 specular^2)
     std::array<float, 16> roughness{};  ///< perceptual, by material index
     std::array<float, 16> metallic{};   ///< by material index
+    std::array<float, 16> subsurface{};  ///< diffuse wrap, by material index
     std::array<Vec3, 9> irradianceSH{};  ///< the environment's irradiance (environment.h)
     float environmentMaxLod = 0;         ///< the pre-filtered cube's roughest level
     float environmentIntensity = 0;

@@ -210,6 +210,7 @@ struct Renderer::Impl {
             const SurfaceLook look = k < s.materialLooks.size() ? s.materialLooks[k] : SurfaceLook{};
             f.roughness[k] = float(look.roughness);
             f.metallic[k] = float(look.metallic);
+            f.subsurface[k] = float(look.subsurface);
         }
     }
 
@@ -285,6 +286,7 @@ struct Renderer::Impl {
         grey.baseColor = srgbToLinear(Vec3{0.78, 0.78, 0.76});
         grey.roughness.fill(0.5f);  // and a satin dielectric
         grey.metallic.fill(0.0f);
+        grey.subsurface.fill(0.0f);
 
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);

@@ -90,6 +90,13 @@ vec3 F_Schlick(vec3 f0, float f90, float VoH) {
 // Lambert: a perfectly diffuse surface of albedo 1 reflects E / pi in every direction.
 float Fd_Lambert() { return 1.0 / PI; }
 
+// Wrapped diffuse (Green, "Real-Time Approximations to Subsurface Scattering", GPU Gems,
+// 2004, ch. 16), normalised as Filament's cloth model does: the cosine factor of Lambert
+// becomes max(NoL + w, 0) / (1 + w)^2, so light reaches w past the shadow line, the side
+// facing the light dims to 1 / (1 + w), and a sphere reflects in all exactly what a
+// Lambert sphere does (the integral over the sphere is pi for any w). w = 0: max(NoL, 0).
+float Fd_Wrap(float NoL, float w) { return max(NoL + w, 0.0) / ((1.0 + w) * (1.0 + w)); }
+
 // Karis, "Physically Based Shading on Mobile" (Unreal Engine blog, 2014): an analytic fit
 // of the split-sum environment BRDF (Karis, "Real Shading in Unreal Engine 4", SIGGRAPH
 // 2013): the specular reflectance under uniform light is f0 * x + f90 * y.
@@ -112,6 +119,7 @@ uniform vec3 uLightRadiance[MAX_LIGHTS];  // linear colour times intensity
 uniform float uSpecular;                  // dielectrics' reflectance: f0 = 0.16 specular^2
 uniform float uMaterialRoughness[16];     // perceptual, by material index
 uniform float uMaterialMetallic[16];
+uniform float uMaterialSubsurface[16];   // diffuse wrap w (Fd_Wrap)
 uniform int uShadowed;                    // the first light casts shadows
 uniform sampler2DShadow uShadowMap;
 uniform mat4 uLightViewProj;
@@ -174,7 +182,7 @@ void writePasses(vec3 p, vec3 n, vec3 velocity, float weight) {
 // f0 = 0.16 uSpecular^2 (4% by default) and diffuse the rest; metals reflect their base
 // colour and diffuse nothing. Light intensity 1 lights a white diffuse surface facing it
 // to 1 (its irradiance is pi).
-vec3 shade(vec3 p, vec3 n, vec3 baseColor, float roughness, float metallic) {
+vec3 shade(vec3 p, vec3 n, vec3 baseColor, float roughness, float metallic, float subsurface) {
     vec3 v = normalize(uEye - p);
     float NoV = max(dot(n, v), 1e-4);
     float r = clamp(roughness, 0.045, 1.0);  // below it the lobe is thinner than a float
@@ -191,15 +199,20 @@ vec3 shade(vec3 p, vec3 n, vec3 baseColor, float roughness, float metallic) {
     for (int i = 0; i < uLightCount; ++i) {
         vec3 l = uLightToward[i];
         float NoL = dot(n, l);
-        if (NoL <= 0.0) continue;
-        float visible = i == 0 ? keyLightVisibility(p, n) : 1.0;
+        float wrapped = Fd_Wrap(NoL, subsurface);
+        if (wrapped <= 0.0) continue;
+        // Past the shadow line the surface would shadow itself: the lookup's normal offset
+        // leans towards the light as far as the wrap reaches.
+        vec3 offsetNormal = subsurface > 0.0 ? normalize(n + subsurface * l) : n;
+        float visible = i == 0 ? keyLightVisibility(p, offsetNormal) : 1.0;
         vec3 h = normalize(l + v);
         float NoH = clamp(dot(n, h), 0.0, 1.0);
         float VoH = clamp(dot(v, h), 0.0, 1.0);
         vec3 F = F_Schlick(f0, f90, VoH);
-        vec3 specular = D_GGX(NoH, a) * V_SmithGGXCorrelated(NoV, NoL, a) * F;
-        vec3 diffuse = diffuseColor * (1.0 - F) * Fd_Lambert();
-        color += visible * uLightRadiance[i] * (PI * NoL) * (diffuse + specular);
+        vec3 specular = NoL > 0.0 ? D_GGX(NoH, a) * V_SmithGGXCorrelated(NoV, NoL, a) * F * NoL
+                                  : vec3(0.0);
+        vec3 diffuse = diffuseColor * (1.0 - F) * Fd_Lambert() * wrapped;
+        color += visible * uLightRadiance[i] * PI * (diffuse + specular);
     }
     return color;
 }
@@ -207,7 +220,8 @@ vec3 shade(vec3 p, vec3 n, vec3 baseColor, float roughness, float metallic) {
 // As above with the roughness and metallic of material @p material (an index).
 vec3 shadeMaterial(vec3 p, vec3 n, vec3 baseColor, float material) {
     int k = clamp(int(material + 0.5), 0, 15);
-    return shade(p, n, baseColor, uMaterialRoughness[k], uMaterialMetallic[k]);
+    return shade(p, n, baseColor, uMaterialRoughness[k], uMaterialMetallic[k],
+                 uMaterialSubsurface[k]);
 }
 )";
 
@@ -306,7 +320,7 @@ void main() {
     float checker = filteredChecker(vWorld.xz / uCheckerSize);
     vec3 albedo = uGroundColor * (1.0 - uCheckerContrast * checker);
     // A matte studio floor: rough, dielectric.
-    vec3 color = shade(vWorld, vec3(0.0, 1.0, 0.0), albedo, 0.8, 0.0);
+    vec3 color = shade(vWorld, vec3(0.0, 1.0, 0.0), albedo, 0.8, 0.0, 0.0);
     float fade = smoothstep(uFade.x, uFade.y, length(vWorld.xz - uFadeCenter));
     // Premultiplied: over a transparent background the ground fades into alpha.
     float alpha = mix(1.0, uBackgroundAlpha, fade);

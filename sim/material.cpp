@@ -33,6 +33,11 @@ void MaterialSettings::describe(SettingsSection& s) {
     s.number("metallic", metallic, NumberRange::between(0, 1),
              "render: 0 = dielectric (plastic, water: 4% reflectance, the rest diffused), 1 = "
              "metal (reflects its base colour, diffuses nothing)");
+    s.number("subsurface", subsurface, NumberRange::between(0, 1),
+             "render: wrap of the diffuse light past the shadow line, the soft look of light "
+             "scattered under the surface (wax, soap, flesh); 0 = Lambert. It keeps the "
+             "light a lit sphere reflects in all and dims the side facing the light by "
+             "1 / (1 + subsurface)");
     s.choice("look", look, {"auto", "liquid", "opaque"},
              "render: how mode = \"surface\" and \"fluid\" draw it; liquid: transmission "
              "that refracts what lies behind, Beer-Lambert absorption and Fresnel reflection; "

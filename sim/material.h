@@ -44,6 +44,7 @@ struct MaterialSettings : ForceConstants {
     Vec3 color{0, 0, 0};
     double roughness = 0.35;  ///< render: perceptual roughness in [0, 1] (surface_look.h)
     double metallic = 0;      ///< render: 0 = dielectric, 1 = metal
+    double subsurface = 0;    ///< render: wrap of the diffuse light in [0, 1] (surface_look.h)
 
     // How the renderer draws it as a liquid (render/liquid_optics.h). Light crossing a
     // depth d of it keeps exp(-absorption * density * d) of each linear RGB channel.

@@ -158,6 +158,35 @@ TEST(Lighting, MetalsReflectTheirColourAndDiffuseNothing) {
     EXPECT_GT(brightest(renderer.lastFrame()), 0.5f);  // its highlight is there
 }
 
+// Subsurface wrap (Fd_Wrap): a white matte sphere, no specular, no environment. Lit from
+// the camera, the point facing the light dims to 1 / (1 + w) of Lambert's; lit from the
+// side, the centre of the disc lies on the shadow line, dark for Lambert and lit to
+// w / (1 + w)^2 with the wrap, and light reaches past it.
+TEST(Lighting, SubsurfaceWrapsTheDiffuseLightPastTheShadowLine) {
+    Renderer renderer(kSize, kSize, 1);
+    FrameSetup s = keyLitSetup();
+    s.render.specular = 0;
+    const auto centreAndLeft = [&](double w, Vec3 direction) {
+        s.lights.front().direction = direction;
+        s.materialLooks = {{1.0, 0.0, w}};
+        renderer.drawSpheres(oneSphere({0, 0, 0}, 1), s);
+        return std::make_pair(redAt(renderer.lastFrame(), 0, 0),
+                              redAt(renderer.lastFrame(), -5, 0));
+    };
+    const float lambertFacing = centreAndLeft(0, {0, 0, -1}).first;
+    const float wrappedFacing = centreAndLeft(0.5, {0, 0, -1}).first;
+    EXPECT_NEAR(lambertFacing, 1.0, 0.02);
+    EXPECT_NEAR(wrappedFacing / lambertFacing, 1 / 1.5, 0.02);
+
+    const auto [lambertLine, lambertPast] = centreAndLeft(0, {-1, 0, 0});
+    const auto [wrappedLine, wrappedPast] = centreAndLeft(0.5, {-1, 0, 0});
+    EXPECT_LT(lambertLine, 0.05f);  // the pixel's centre is half a pixel off the line
+    EXPECT_EQ(lambertPast, 0.0f);
+    EXPECT_NEAR(wrappedLine, 0.5 / (1.5 * 1.5), 0.02);
+    EXPECT_GT(wrappedPast, 0.03f);
+    EXPECT_LT(wrappedPast, wrappedLine);
+}
+
 // A mesh takes each vertex's material (its "material" attribute) for roughness and
 // metallic: a square of material 1 (metal) is dark off its highlight where one of
 // material 0 (dielectric) shows its colour.
