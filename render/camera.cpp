@@ -101,10 +101,20 @@ ViewCamera frameTheAction(const std::vector<Bounds3>& frames, double groundHeigh
     return {target + a.toEye * distance, target, fov};
 }
 
+/// The frames that hold something (an empty frame has nothing to frame).
+std::vector<Bounds3> nonEmpty(const std::vector<Bounds3>& frames) {
+    std::vector<Bounds3> kept;
+    for (const Bounds3& b : frames) {
+        if (!b.empty) kept.push_back(b);
+    }
+    return kept;
+}
+
 }  // namespace
 
 ViewCamera autoFrame(const SceneExtent& extent, double groundHeight, double fov, double aspect) {
-    if (!extent.frames.empty()) return frameTheAction(extent.frames, groundHeight, fov, aspect);
+    const std::vector<Bounds3> frames = nonEmpty(extent.frames);
+    if (!frames.empty()) return frameTheAction(frames, groundHeight, fov, aspect);
     std::vector<Vec3> points = extent.samples;
     points.insert(points.end(), extent.extremes.begin(), extent.extremes.end());
     double pad = extent.maxRadius;
@@ -175,6 +185,46 @@ DepthRange depthRange(Vec3 eye, const Bounds3& content, double groundReach) {
     // small fraction of the view distance; 24-bit depth keeps 1:10^4 ratios clean.
     const double zNear = std::max(zFar * 1e-4, std::min(0.05 * toCenter, toCenter - radius));
     return {std::max(zNear, 1e-4), zFar};
+}
+
+
+std::vector<ViewCamera> followTheAction(const SceneExtent& extent, double groundHeight,
+                                        double fov, double aspect, int window) {
+    const std::vector<Bounds3>& frames = extent.frames;
+    const int n = int(frames.size());
+    const ViewCamera still = autoFrame(extent, groundHeight, fov, aspect);
+    window = std::max(window, 1);
+    // Each frame framed on its neighbours in time.
+    std::vector<ViewCamera> framed(std::size_t(n), still);
+    std::vector<char> held(std::size_t(n), 0);
+    for (int f = 0; f < n; ++f) {
+        std::vector<Bounds3> near;
+        for (int k = std::max(0, f - window); k <= std::min(n - 1, f + window); ++k) {
+            if (!frames[std::size_t(k)].empty) near.push_back(frames[std::size_t(k)]);
+        }
+        if (near.empty()) continue;
+        framed[std::size_t(f)] = frameTheAction(near, groundHeight, fov, aspect);
+        held[std::size_t(f)] = 1;
+    }
+    // Then smoothed: a raised-cosine average of targets and log distances.
+    const ViewAxes a = viewAxes();
+    std::vector<ViewCamera> path(std::size_t(n), still);
+    for (int f = 0; f < n; ++f) {
+        double weights = 0, logDistance = 0;
+        Vec3 target{0, 0, 0};
+        for (int k = std::max(0, f - window); k <= std::min(n - 1, f + window); ++k) {
+            if (!held[std::size_t(k)]) continue;
+            const ViewCamera& c = framed[std::size_t(k)];
+            const double w = 0.5 + 0.5 * std::cos(std::numbers::pi * (k - f) / (window + 1));
+            weights += w;
+            target = target + c.target * w;
+            logDistance += w * std::log(length(c.position - c.target));
+        }
+        if (!(weights > 0)) continue;
+        target = target * (1 / weights);
+        path[std::size_t(f)] = {target + a.toEye * std::exp(logDistance / weights), target, fov};
+    }
+    return path;
 }
 
 }  // namespace globular

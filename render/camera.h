@@ -5,6 +5,8 @@
 #include "transform.h"
 #include "vec3.h"
 
+#include <vector>
+
 namespace globular {
 
 struct ViewCamera {
@@ -26,6 +28,16 @@ struct ViewCamera {
 /// rather than shrink the subject of the rest of the shot. One camera for the whole
 /// shot either way.
 ViewCamera autoFrame(const SceneExtent& extent, double groundHeight, double fov, double aspect);
+
+/// One camera per entry of extent.frames, for a shot whose subject changes size or place
+/// (a tall column that becomes a wide puddle): frame f is framed as autoFrame frames a
+/// shot, from the frames within @p window frames of it, and the targets and (log)
+/// distances are then averaged over the same window with raised-cosine weights, so the
+/// view glides instead of cutting and the subject never shrinks to a speck. The view
+/// direction stays autoFrame's. A shot whose frames are all alike gets autoFrame's camera
+/// on every frame; a frame with nothing near it in time gets autoFrame's.
+std::vector<ViewCamera> followTheAction(const SceneExtent& extent, double groundHeight,
+                                        double fov, double aspect, int window);
 
 /// The fraction of the frames whose content each edge of the automatic framing holds.
 inline constexpr double kFramedFraction = 0.75;

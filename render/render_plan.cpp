@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "errors.h"
@@ -20,9 +21,10 @@ namespace {
 
 // Part of the fingerprint: raise it whenever what a plan measures, or how (autoFrame, the
 // ramp's range), changes, so plans an older build measured are measured again.
-constexpr int kFormat = 1;
-// A plan is a few hundred bytes plus the contact sheet's frame list.
-constexpr uint64_t kMaxPlanBytes = 1 << 20;
+constexpr int kFormat = 2;  // 2: the following camera's path
+// A plan is a few hundred bytes plus the contact sheet's frame list and, with a following
+// camera, about 130 bytes a frame.
+constexpr uint64_t kMaxPlanBytes = 64 << 20;
 
 /// Shortest text that reads back as exactly @p v, always a TOML float.
 std::string number(double v) {
@@ -110,7 +112,43 @@ Vec3 readVec3(const toml::table& t, const std::string& key, const std::string& s
     return {v[0], v[1], v[2]};
 }
 
+/// The following camera's path ([camera] path_positions and path_targets, both or
+/// neither), one camera per frame of the plan.
+std::vector<ViewCamera> readPath(const toml::table& t, const RenderPlan& plan,
+                                 const std::string& source) {
+    if (!t.at_path("camera.path_positions").node() && !t.at_path("camera.path_targets").node()) {
+        return {};
+    }
+    const long frames = long(plan.lastFrame) - plan.firstFrame + 1;
+    std::vector<ViewCamera> path;
+    for (const bool eyes : {true, false}) {
+        const char* key = eyes ? "camera.path_positions" : "camera.path_targets";
+        const toml::node* node = t.at_path(key).node();
+        const toml::array* a = node ? node->as_array() : nullptr;
+        if (!a || long(a->size()) != frames) {
+            bad(source, key, "is not an array of " + std::to_string(frames) + " points");
+        }
+        path.resize(a->size(), plan.camera);
+        for (std::size_t i = 0; i < a->size(); ++i) {
+            const toml::array* p = (*a)[i].as_array();
+            double v[3];
+            for (std::size_t j = 0; j < 3; ++j) {
+                const auto x = p && p->size() == 3 ? (*p)[j].value<double>() : std::nullopt;
+                if (!x || !std::isfinite(*x)) bad(source, key, "holds a point that is not 3 finite numbers");
+                v[j] = *x;
+            }
+            (eyes ? path[i].position : path[i].target) = {v[0], v[1], v[2]};
+        }
+    }
+    return path;
+}
+
 }  // namespace
+
+const ViewCamera& RenderPlan::cameraFor(int frame) const {
+    const long i = long(frame) - firstFrame;
+    return i >= 0 && i < long(path.size()) ? path[std::size_t(i)] : camera;
+}
 
 fs::path renderPlanPath(const fs::path& outDir) { return outDir / "render_plan.toml"; }
 
@@ -121,7 +159,8 @@ std::string renderPlanFingerprint(const RenderJob& job, const fs::path& outDir, 
     std::ostringstream text;
     text << "plan " << kFormat << "\nmode " << r.mode << "\ncolor_by " << r.colorBy << "\nramp "
          << number(r.rampMin) << " " << number(r.rampMax) << "\nsize " << r.width << " "
-         << r.height << "\ncamera " << c.automatic() << " " << vec3(c.position) << " "
+         << r.height << "\ncamera " << c.automatic() << " " << c.follow << " "
+         << number(c.followSeconds) << " " << vec3(c.position) << " "
          << vec3(c.target) << " " << number(c.fov) << "\nground " << number(job.groundHeight)
          << "\nmesh_format " << job.meshFormat << "\nfps " << number(job.fps)
          << "\ncontact_sheet " << r.contactSheet << "\ncolliders "
@@ -154,7 +193,18 @@ std::string renderPlanToml(const RenderPlan& plan) {
         << "position = " << vec3(plan.camera.position) << "\n"
         << "target = " << vec3(plan.camera.target) << "\n"
         << "fov = " << number(plan.camera.fov) << "  # vertical, degrees\n"
-        << "automatic = " << (plan.automaticCamera ? "true" : "false") << "\n"
+        << "automatic = " << (plan.automaticCamera ? "true" : "false") << "\n";
+    if (!plan.path.empty()) {
+        out << "# the following camera, frame by frame from first_frame\n";
+        for (const bool eyes : {true, false}) {
+            out << (eyes ? "path_positions" : "path_targets") << " = [\n";
+            for (const ViewCamera& c : plan.path) {
+                out << "  " << vec3(eyes ? c.position : c.target) << ",\n";
+            }
+            out << "]\n";
+        }
+    }
+    out
         << "\n[ramp]\n"
         << "color_by = " << quoted(plan.colorBy) << "\n"
         << "empty = " << (plan.ramp.empty ? "true" : "false") << "\n"
@@ -183,7 +233,7 @@ RenderPlan parseRenderPlan(const std::string& text, const std::string& source) {
                       std::to_string(e.source().begin.line) +
                       "; delete the file to have it measured again)");
     }
-    if (readInt(t, "format", source) != kFormat) bad(source, "format", "is not 1");
+    if (readInt(t, "format", source) != kFormat) bad(source, "format", "is not " + std::to_string(kFormat));
     RenderPlan plan;
     plan.fingerprint = readString(t, "fingerprint", source);
     plan.firstFrame = readInt(t, "first_frame", source);
@@ -195,6 +245,7 @@ RenderPlan parseRenderPlan(const std::string& text, const std::string& source) {
     plan.camera.target = readVec3(t, "camera.target", source);
     plan.camera.fov = readNumber(t, "camera.fov", source);
     plan.automaticCamera = readBool(t, "camera.automatic", source);
+    plan.path = readPath(t, plan, source);
     plan.colorBy = readString(t, "ramp.color_by", source);
     plan.ramp.empty = readBool(t, "ramp.empty", source);
     plan.ramp.min = readNumber(t, "ramp.min", source);

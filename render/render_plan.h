@@ -26,11 +26,17 @@ struct RenderPlan {
     std::string mode;          ///< [render] mode: what was measured (caches or meshes)
     std::string colorBy;       ///< [render] color_by the ramp is for
     int width = 0, height = 0; ///< pixels: the aspect the camera was fitted to
-    ViewCamera camera;         ///< automatic (fitted) or the scene's [camera]
+    ViewCamera camera;         ///< automatic (fitted) or the scene's [camera]; still
+    /// With [camera] follow: the camera of each frame firstFrame..lastFrame; empty: camera
+    /// on every frame.
+    std::vector<ViewCamera> path;
     bool automaticCamera = false;
     Bounds3 content;           ///< the whole animation's robust box, world units
     ValueRange ramp;           ///< colour ramp ends (speed units/s or height units)
     std::vector<int> sheetFrames;  ///< contact_sheet.png's frames; empty: no sheet
+
+    /// The camera of @p frame: path's, else camera.
+    const ViewCamera& cameraFor(int frame) const;
 };
 
 /// DIR/render_plan.toml.

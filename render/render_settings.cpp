@@ -182,6 +182,12 @@ void CameraSettings::describe(SettingsSection& s) {
     s.number("fov", fov, {1, 170}, "vertical field of view, degrees");
     s.flag("auto_frame", autoFrame,
            "frame the whole animation automatically unless position and target are given");
+    s.flag("follow", follow,
+           "automatic framing glides with the action: each frame framed on the frames within "
+           "follow_seconds of it, the moves smoothed over that window, so the subject never "
+           "shrinks to a speck; false: one still camera for the whole shot");
+    s.number("follow_seconds", followSeconds, {0.04, 600},
+             "time window of the following camera around each frame, seconds");
 }
 
 void CameraSettings::noteGivenKeys(const SettingsSection& s) {

@@ -70,6 +70,10 @@ struct CameraSettings {
     /// Frame automatically while position and target are unset (equal). False: always the
     /// given camera (then position must differ from target).
     bool autoFrame = true;
+    /// Automatic framing glides with the action (followTheAction) instead of holding one
+    /// camera for the whole shot (autoFrame).
+    bool follow = true;
+    double followSeconds = 1.5;  ///< the time window framed and smoothed around each frame
 
     /// Whether the renderer places the camera itself: autoFrame and no camera given.
     bool automatic() const { return autoFrame && position == target; }

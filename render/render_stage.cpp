@@ -1,6 +1,7 @@
 #include "render_stage.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 
@@ -152,6 +153,10 @@ RenderPlan measurePlan(const RenderJob& job, const std::vector<ColliderSolid>& s
     const double aspect = double(job.render.width) / double(job.render.height);
     if (plan.automaticCamera) {
         plan.camera = autoFrame(extent, job.groundHeight, job.camera.fov, aspect);
+        if (job.camera.follow) {
+            const int window = std::max(1, int(std::lround(job.camera.followSeconds * job.fps)));
+            plan.path = followTheAction(extent, job.groundHeight, job.camera.fov, aspect, window);
+        }
     } else {
         plan.camera = {job.camera.position, job.camera.target, job.camera.fov};
     }
@@ -332,6 +337,7 @@ void runRenderStage(const RenderJob& job, const StageContext& ctx) {
     for (int f = ctx.firstFrame; f <= ctx.lastFrame; ++f) {
         FrameSetup frameSetup = setup;
         frameSetup.props = propsAt(job, solids, ctx, f);
+        frameSetup.camera = plan.cameraFor(f);
         Image image;
         if (job.render.mode == "surface") {
             const TriangleMesh mesh = readMesh(job, ctx.outDir, f);

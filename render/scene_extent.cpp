@@ -160,7 +160,7 @@ void SceneExtent::addPoints(const float* positions, std::size_t vertexCount) {
 }
 
 void SceneExtent::endFrame() {
-    if (!currentFrame.empty) frames.push_back(currentFrame);
+    frames.push_back(currentFrame);
     currentFrame = {};
 }
 

@@ -43,7 +43,7 @@ struct SceneExtent {
     std::vector<Vec3> extremes;
     double maxRadius = 0;  ///< robust largest radius, world units
     /// Each frame's robust box (what addFrame and addPoints merged since the last
-    /// endFrame), in order: automatic framing frames where the content is for most of
+    /// endFrame; empty for a frame with nothing), in order: automatic framing frames where the content is for most of
     /// the shot rather than everywhere it ever goes.
     std::vector<Bounds3> frames;
     Bounds3 currentFrame;  ///< merged since the last endFrame()
@@ -52,7 +52,8 @@ struct SceneExtent {
     void addFrame(const Globules& globules);
     /// Merges a mesh's vertices (@p positions: x, y, z per vertex).
     void addPoints(const float* positions, std::size_t vertexCount);
-    /// Closes the current frame: its box joins `frames` (unless nothing was added).
+    /// Closes the current frame: its box joins `frames` (empty when nothing was added, so
+    /// `frames` has one entry per frame).
     void endFrame();
 };
 

@@ -171,6 +171,56 @@ TEST(AutoFrame, FramesReachDownToTheirFootOnTheGround) {
     EXPECT_LE(ground[2], -0.8);  // the foot is at the bottom edge
 }
 
+// The paper's pour again with a following camera: the column is framed while it stands
+// and the puddle fills the picture at the end; the camera glides (no cut between frames).
+TEST(FollowTheAction, FramesTheColumnThenThePuddleAndGlides) {
+    SceneExtent extent;
+    for (int f = 0; f < 150; ++f) {
+        const double top = f < 100 ? 80.0 : 2.0;
+        const double half = f < 100 ? 1.0 : 6.0;
+        extent.currentFrame = boxOf({-half, 0, -half}, {half, top, half});
+        extent.box.add(extent.currentFrame);
+        extent.endFrame();
+    }
+    const double aspect = 16.0 / 9.0;
+    const std::vector<ViewCamera> path = followTheAction(extent, 0, 40, aspect, 25);
+    ASSERT_EQ(path.size(), 150u);
+    const Bounds3 puddle = boxOf({-6, 0, -6}, {6, 2, 6});
+    const auto still = projectedBox(autoFrame(extent, 0, 40, aspect), aspect, puddle);
+    const auto last = projectedBox(path.back(), aspect, puddle);
+    // One still camera holds the column two thirds of the shot and the puddle is small;
+    // following, it fills the frame's height at the end (90% margin, 2 = full height).
+    EXPECT_LT(still[1] - still[0], 0.5) << "puddle width, NDC, still camera";
+    EXPECT_NEAR(std::max(last[1] - last[0], last[3] - last[2]), 1.8, 0.05);
+    const auto column = projectedBox(path[40], aspect, boxOf({-1, 0, -1}, {1, 80, 1}));
+    EXPECT_NEAR(column[3] - column[2], 1.8, 0.05) << "the column fills the height";
+    // The subject changes at once (frame 100); the camera takes the move over about two
+    // windows: no step between two frames is more than 5% of the whole move.
+    const double move = length(path.back().target - path.front().target);
+    for (std::size_t f = 1; f < path.size(); ++f) {
+        const double d0 = length(path[f - 1].position - path[f - 1].target);
+        const double d1 = length(path[f].position - path[f].target);
+        EXPECT_LT(std::abs(std::log(d1 / d0)), 0.1) << "frame " << f;
+        EXPECT_LT(length(path[f].target - path[f - 1].target), 0.05 * move) << "frame " << f;
+    }
+}
+
+// A shot that does not change is framed as autoFrame frames it, on every frame; frames
+// with nothing in them (before anything is emitted) take their neighbours' framing.
+TEST(FollowTheAction, AStillShotGetsTheStillCamera) {
+    SceneExtent extent;
+    for (int f = 0; f < 40; ++f) {
+        if (f >= 5) extent.currentFrame = boxOf({-3, 0, -3}, {3, 4, 3});
+        extent.endFrame();
+    }
+    ASSERT_EQ(extent.frames.size(), 40u);  // empty frames keep their place
+    const ViewCamera still = autoFrame(extent, 0, 40, 1.5);
+    for (const ViewCamera& c : followTheAction(extent, 0, 40, 1.5, 10)) {
+        EXPECT_NEAR(length(c.position - still.position), 0, 1e-9 * length(still.position));
+        EXPECT_NEAR(length(c.target - still.target), 0, 1e-9 * length(still.position));
+    }
+}
+
 TEST(AutoFrame, EmptyContentStillGivesAView) {
     const ViewCamera cam = autoFrame(SceneExtent{}, 2, 40, 1.0);
     EXPECT_GT(length(cam.position - cam.target), 1);

@@ -139,7 +139,17 @@ TEST(RenderPlan, TomlRoundTripsEveryDoubleExactly) {
     plan.content.add(Vec3{1, 2.5, 4});
     plan.ramp.add(0.1, 17.0 / 3.0);
     plan.sheetFrames = {1, 120, 240};
+    for (int f = 1; f <= 240; ++f) {
+        plan.path.push_back({{f / 7.0, 1e-9 * f, -f * 1e10}, {3.0 / f, 0, 1}, 40});
+    }
     const RenderPlan back = parseRenderPlan(renderPlanToml(plan), "test");
+    ASSERT_EQ(back.path.size(), plan.path.size());
+    for (std::size_t i = 0; i < plan.path.size(); ++i) {
+        EXPECT_EQ(back.path[i].position, plan.path[i].position) << i;
+        EXPECT_EQ(back.path[i].target, plan.path[i].target) << i;
+    }
+    EXPECT_EQ(back.cameraFor(7).target, plan.path[6].target);
+    EXPECT_EQ(back.cameraFor(241).target, plan.camera.target);  // outside: the still camera
     EXPECT_EQ(back.camera.position, plan.camera.position);
     EXPECT_EQ(back.camera.target, plan.camera.target);
     EXPECT_EQ(back.camera.fov, 40.0);
@@ -160,7 +170,7 @@ TEST(RenderPlan, TomlRoundTripsEveryDoubleExactly) {
 
 TEST(RenderPlan, DamagedPlanNamesFileAndKey) {
     try {
-        parseRenderPlan("format = 1\nfingerprint = \"x\"\nfirst_frame = 1\n", "DIR/render_plan.toml");
+        parseRenderPlan("format = 2\nfingerprint = \"x\"\nfirst_frame = 1\n", "DIR/render_plan.toml");
         FAIL();
     } catch (const IoError& e) {
         const std::string message = e.what();
@@ -168,7 +178,27 @@ TEST(RenderPlan, DamagedPlanNamesFileAndKey) {
         EXPECT_NE(message.find("last_frame"), std::string::npos) << message;
     }
     EXPECT_THROW(parseRenderPlan("[camera\n", "p"), IoError);
+    // A following camera's path must hold one point per frame, each finite.
+    RenderPlan plan;
+    plan.lastFrame = 3;
+    plan.path.assign(3, ViewCamera{{1, 2, 3}, {4, 5, 6}, 40});
+    const std::string text = renderPlanToml(plan);
+    const std::string point = "  [4.0, 5.0, 6.0],\n";
+    ASSERT_NE(text.find(point), std::string::npos) << text;
+    std::string missing = text, infinite = text;
+    missing.erase(missing.find(point), point.size());
+    infinite.replace(infinite.find(point), point.size(), "  [4.0, inf, 6.0],\n");
+    for (const std::string& damaged : {missing, infinite}) {
+        try {
+            parseRenderPlan(damaged, "DIR/render_plan.toml");
+            ADD_FAILURE() << damaged;
+        } catch (const IoError& e) {
+            EXPECT_NE(std::string(e.what()).find("camera.path_targets"), std::string::npos)
+                << e.what();
+        }
+    }
 }
+
 
 TEST(RenderPlan, KeptWhileCurrentMeasuredAgainWhenStale) {
     const fs::path dir = freshDir("stale");
