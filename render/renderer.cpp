@@ -94,6 +94,20 @@ TriangleMesh cutaway(const TriangleMesh& mesh, Vec3 eye) {
     return far;
 }
 
+/// What the spheres' colour ramp reads for @p colorBy.
+/// @throw Error for color_by = temperature when the globules carry none.
+detail::SpherePass::Value sphereValue(const Globules& globules, const std::string& colorBy) {
+    using Value = detail::SpherePass::Value;
+    if (colorBy == "temperature" && globules.temperature.size() != globules.size()) {
+        throw Error("render: color_by = \"temperature\" but the globules carry no temperature "
+                    "(the scene has no [thermal] section)");
+    }
+    return colorBy == "speed"         ? Value::Speed
+           : colorBy == "material"    ? Value::Material
+           : colorBy == "temperature" ? Value::Temperature
+                                      : Value::None;
+}
+
 }  // namespace
 
 double automaticCheckerSize(const Bounds3& content) {
@@ -366,16 +380,7 @@ Image Renderer::drawSpheres(const Globules& globules, const FrameSetup& setup) {
             pass.drawShading(f, target);
         }
     };
-    using Value = detail::SpherePass::Value;
-    const std::string& by = s.render.colorBy;
-    if (by == "temperature" && globules.temperature.size() != globules.size()) {
-        throw Error("render: color_by = \"temperature\" but the globules carry no temperature "
-                    "(the scene has no [thermal] section)");
-    }
-    const Value value = by == "speed"         ? Value::Speed
-                        : by == "material"    ? Value::Material
-                        : by == "temperature" ? Value::Temperature
-                                              : Value::None;
+    const detail::SpherePass::Value value = sphereValue(globules, s.render.colorBy);
     return im.accumulate(s, [&](const FrameSetup& sub, double seconds) {
         if (seconds == 0) {
             im.draw(sub, own.box, Content{*im.spheres, im.target, globules, value});
@@ -495,16 +500,7 @@ Image Renderer::Impl::drawFluid(const Globules& globules, const FrameSetup& setu
     };
     const Globules opaque = opaqueGlobules(globules, s.materialOptics);
     if (!opaque.empty() && !spheres) spheres.emplace(samples);
-    using Value = detail::SpherePass::Value;
-    const std::string& by = s.render.colorBy;
-    if (by == "temperature" && opaque.temperature.size() != opaque.size()) {
-        throw Error("render: color_by = \"temperature\" but the globules carry no temperature "
-                    "(the scene has no [thermal] section)");
-    }
-    const Value value = by == "speed"         ? Value::Speed
-                        : by == "material"    ? Value::Material
-                        : by == "temperature" ? Value::Temperature
-                                              : Value::None;
+    const detail::SpherePass::Value value = sphereValue(opaque, s.render.colorBy);
     if (spheres) spheres->setCulling(culling);
     return accumulate(s, [&](const FrameSetup& sub, double seconds) {
         if (seconds == 0) {
