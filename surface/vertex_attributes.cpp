@@ -84,26 +84,24 @@ void carryGlobuleAttributes(TriangleMesh& mesh, const Globules& globules,
             if (near.empty() && nearest != std::numeric_limits<uint32_t>::max()) {
                 near.push_back({nearest, 1.0f});
             }
-            if (which.velocity) {
-                double sum = 0, weighted[3] = {0, 0, 0};
-                for (const Weighted& g : near) {
-                    sum += g.weight;
-                    weighted[0] += double(g.weight) * globules.vx[g.globule];
-                    weighted[1] += double(g.weight) * globules.vy[g.globule];
-                    weighted[2] += double(g.weight) * globules.vz[g.globule];
+            // Kernel-weighted means, sum(w x) / sum(w), in one pass over the neighbours.
+            double sum = 0, weighted[3] = {0, 0, 0}, warmth = 0;
+            for (const Weighted& g : near) {
+                const double w = g.weight;
+                sum += w;
+                if (which.velocity) {
+                    weighted[0] += w * globules.vx[g.globule];
+                    weighted[1] += w * globules.vy[g.globule];
+                    weighted[2] += w * globules.vz[g.globule];
                 }
+                if (which.temperature) warmth += w * globules.temperature[g.globule];
+            }
+            if (which.velocity) {
                 for (int a = 0; a < 3; ++a) {
                     velocity[a][v] = sum > 0 ? float(weighted[a] / sum) : 0.0f;
                 }
             }
-            if (which.temperature) {
-                double sum = 0, weighted = 0;
-                for (const Weighted& g : near) {
-                    sum += g.weight;
-                    weighted += double(g.weight) * globules.temperature[g.globule];
-                }
-                temperature[v] = sum > 0 ? float(weighted / sum) : 0.0f;
-            }
+            if (which.temperature) temperature[v] = sum > 0 ? float(warmth / sum) : 0.0f;
             if (which.material) {
                 std::fill(perMaterial.begin(), perMaterial.end(), 0.0);
                 for (const Weighted& g : near) perMaterial[globules.materialOf(g.globule)] += g.weight;
