@@ -20,6 +20,7 @@ packages=(
     libtomlplusplus-dev libcli11-dev
     libgtest-dev libgmock-dev libbenchmark-dev
     gnuplot-nox
+    python3                     # the Blender add-on's PLY reader test runs under plain python3
     clang libclang-rt-14-dev    # libFuzzer targets (scripts/ci_reliability.sh)
 )
 if [[ "${WITH_PEERS:-0}" == 1 ]]; then
