@@ -128,6 +128,44 @@ void BM_SimulationStepThermalTwoMaterials(benchmark::State& state) {
     runSteps(state, setup);
 }
 
+/// Mean number of other globules within @p reach of a sample of @p g's globules (every
+/// 50th, against all of them): what a step's force loop evaluates per globule.
+double meanNeighborsWithin(const Globules& g, float reach) {
+    const std::size_t n = g.size();
+    std::size_t pairs = 0, sampled = 0;
+    for (std::size_t i = 0; i < n; i += 50, ++sampled) {
+        for (std::size_t j = 0; j < n; ++j) {
+            const float dx = g.px[i] - g.px[j], dy = g.py[i] - g.py[j], dz = g.pz[i] - g.pz[j];
+            pairs += j != i && dx * dx + dy * dy + dz * dz < reach * reach;
+        }
+    }
+    return sampled ? double(pairs) / double(sampled) : 0.0;
+}
+
+/// A dense pile: the block's lattice squeezed to spacing 0.6, so each globule has about
+/// 500 neighbours within the drag reach of 3 (the block at 1.05 has about 100). The pile
+/// is compressed and slowly springs apart; the benchmark runs a fixed number of steps
+/// and reports the mean neighbour count before and after them.
+void BM_SimulationStepDense(benchmark::State& state) {
+    SimulationSetup setup = liquidBlock(state.range(0));
+    EmitterSettings& box = setup.emitters[0];
+    const double spacing = 0.6;
+    const double side = std::ceil(std::cbrt(double(state.range(0)))) * spacing;
+    box.spacing = spacing;
+    box.min = {-side / 2, 0.5, -side / 2};
+    box.max = {side / 2, 0.5 + side, side / 2};
+    tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
+                                std::size_t(state.range(1)));
+    Simulation sim(setup);
+    sim.step(0.001);
+    const float reach = 3.0f;  // C_d (r_i + r_j) = 1.5 x 2
+    state.counters["neighbors_before"] = meanNeighborsWithin(sim.globules(), reach);
+    for (auto _ : state) sim.step(0.001);
+    state.counters["neighbors_after"] = meanNeighborsWithin(sim.globules(), reach);
+    state.counters["globule_steps_per_s"] = benchmark::Counter(
+        double(sim.globules().size()) * double(state.iterations()), benchmark::Counter::kIsRate);
+}
+
 void BM_SimulationStepAllPairs(benchmark::State& state) {
     runSteps(state, liquidBlock(state.range(0), "all_pairs"));
 }
@@ -170,6 +208,12 @@ BENCHMARK(BM_SimulationStepThermalTwoMaterials)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);
+BENCHMARK(BM_SimulationStepDense)
+    ->ArgsProduct({{100000}, {1, 2}})
+    ->ArgNames({"globules", "threads"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(20);
 BENCHMARK(BM_SimulationStepAllPairs)
     ->ArgsProduct({{400, 10000}, {1}})
     ->ArgNames({"globules", "threads"})
