@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <sstream>
 #include <string>
 
 #include "atomic_file.h"
@@ -127,6 +128,17 @@ void runSimStage(const SimulationSetup& setup, const SimStageOptions& options,
         sim.advanceFrame(frame, ctx.report());
         writeFrame(sim, frame, options, ctx, stats);
         ctx.report().progress("sim", frame, ctx.lastFrame);
+    }
+    if (setup.simulation.adaptive && ctx.lastFrame > 1) {
+        const int64_t fixed = int64_t(ctx.lastFrame - 1) * setup.simulation.substepsPerFrame();
+        const int64_t taken = sim.stepCount();
+        std::ostringstream out;
+        out.precision(3);
+        out << "sim: adaptive time steps: " << taken << " steps where dt = " << setup.simulation.dt
+            << " s would take " << fixed << " (" << 100.0 * double(fixed - taken) / double(fixed)
+            << "% saved, mean step " << (double(ctx.lastFrame - 1) / setup.simulation.fps) / double(taken)
+            << " s)";
+        ctx.report().info(out.str());
     }
 }
 

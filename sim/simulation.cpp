@@ -39,6 +39,7 @@ Simulation::Simulation(const SimulationSetup& setup)
                              ThermalSources(setup.thermal, setup.heaters, setup.materials(),
                                             setup.simulation.gravity, setup.ground)},
               setup.simulation.neighbors == "all_pairs"),
+      mStableStep(setup),
       mIntegrator(makeIntegrator(setup.simulation.integrator)) {
     const std::vector<MaterialSettings> materials = setup.materials();
     if (materials.size() > kMaxMaterials) {
@@ -144,40 +145,66 @@ long Simulation::findRunaway() const {
         [](long a, long b) { return a < 0 ? b : (b < 0 ? a : std::min(a, b)); });
 }
 
+long Simulation::stepTo(double frameEnd, int64_t steps, int refine, int64_t& taken) {
+    const double frameStart = mTime;
+    for (int64_t s = 0;; ++s) {
+        double dt = 0;
+        bool last = false;
+        if (steps > 0) {
+            dt = (frameEnd - frameStart) / double(steps);
+            last = s + 1 == steps;
+        } else {
+            // Adaptive: what is due is emitted first, so that the bound sees it.
+            for (std::size_t k = 0; k < mEmitters.size(); ++k) emitFrom(k, mTime);
+            const double longest =
+                std::min(mSetup.simulation.dt, mStableStep.bound(mGlobules).step()) / refine;
+            const double left = frameEnd - mTime;
+            // The steps left share what remains of the frame evenly: the last one ends on it.
+            const double count = std::max(1.0, std::ceil(left / longest - 1e-9));
+            if (!(count < 1e12)) {
+                throw SimulationError("adaptive time step: the stability bound fell to " +
+                                      std::to_string(longest) + " s at t = " +
+                                      std::to_string(mTime) + " s (a runaway state)");
+            }
+            dt = left / count;
+            last = count == 1;
+        }
+        step(dt);
+        ++taken;
+        const long runaway = findRunaway();
+        if (runaway >= 0 || last) return runaway;
+    }
+}
+
 void Simulation::advanceFrame(int frame, Reporter& reporter) {
     const SimulationSettings& sim = mSetup.simulation;
-    const int64_t baseSteps = sim.substepsPerFrame();
-    const double frameStart = mTime;
+    const int64_t baseSteps = sim.adaptive ? 0 : sim.substepsPerFrame();
     const double frameEnd = double(frame - 1) / sim.fps;
     const bool retry = sim.onExplosion == "substep";
     SimulationState saved;
     if (retry) saved = saveState();
     for (int refine = 1;; refine *= 2) {
-        const int64_t steps = baseSteps * refine;
-        const double dt = (frameEnd - frameStart) / double(steps);
-        long runaway = -1;
-        int64_t s = 0;
-        for (; s < steps && runaway < 0; ++s) {
-            step(dt);
-            runaway = findRunaway();
-        }
+        int64_t taken = 0;
+        const double stepStart = mTime;
+        const long runaway = stepTo(frameEnd, baseSteps * refine, refine, taken);
         if (runaway < 0) {
             mTime = frameEnd;  // no drift from summing dt
             mForces.colliders().setTime(mTime);
             return;
         }
         std::ostringstream why;
-        why << "simulation exploded at frame " << frame << ", step " << s << " of " << steps
-            << " (t = " << mTime << " s): " << describeRunaway(mGlobules, runaway, sim.maxSpeed)
-            << ". The step dt = " << dt
-            << " s is likely too large for these material parameters";
+        why << "simulation exploded at frame " << frame << ", step " << taken;
+        if (baseSteps > 0) why << " of " << baseSteps * refine;
+        why << " (t = " << mTime << " s): " << describeRunaway(mGlobules, runaway, sim.maxSpeed);
+        const double dt = baseSteps > 0 ? (frameEnd - stepStart) / double(baseSteps * refine)
+                                        : (mTime - stepStart) / double(std::max<int64_t>(taken, 1));
+        why << ". The step dt = " << dt << " s is likely too large for these material parameters";
         if (!retry || refine >= kMaxSubstepRefinement) {
             why << "; try dt = " << dt / 4
                 << (retry ? "" : " or set simulation.on_explosion = \"substep\"");
             throw SimulationError(why.str());
         }
-        reporter.warn(why.str() + "; retrying the frame with " + std::to_string(steps * 2) +
-                      " steps");
+        reporter.warn(why.str() + "; retrying the frame with steps half as long");
         restoreState(saved);
     }
 }

@@ -16,6 +16,7 @@
 #include "material.h"
 #include "material_pairs.h"
 #include "simulation_settings.h"
+#include "stable_step.h"
 #include "thermal_settings.h"
 
 namespace globular {
@@ -96,10 +97,15 @@ private:
     void emitFrom(std::size_t k, double time);
     /// Index of a non-finite or too-fast globule after a step, or -1.
     long findRunaway() const;
+    /// Steps to the frame's end at @p frameEnd, each of (frame length) / @p steps (fixed
+    /// dt) or, with @p steps = 0, as long as StableStep allows divided by @p refine.
+    /// @return -1, or a runaway globule (the state is then left as it blew up).
+    long stepTo(double frameEnd, int64_t steps, int refine, int64_t& taken);
 
     SimulationSetup mSetup;
     Globules mGlobules;
     ForceField mForces;
+    StableStep mStableStep;
     std::unique_ptr<Integrator> mIntegrator;
     std::vector<std::unique_ptr<Emitter>> mEmitters;
     std::vector<uint8_t> mEmitterMaterials;  ///< per emitter; empty with one material

@@ -1,0 +1,156 @@
+// Adaptive time stepping (stable_step.h, simulation.adaptive): the bound against the exact
+// stability limit of semi-implicit Euler, and adaptive runs against fixed-dt runs.
+#include "stable_step.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+
+#include "reporter.h"
+#include "simulation.h"
+#include "simulation_runs.h"
+
+using namespace globular;
+
+namespace {
+
+/// The spectral radius of one semi-implicit Euler step of x'' = -c x' - w2 x:
+/// v' = v + dt (-c v - w2 x), x' = x + dt v'.
+double spectralRadius(double c, double w2, double dt) {
+    // [v'; x'] = A [v; x], A = [[1 - c dt, -w2 dt], [dt (1 - c dt), 1 - w2 dt^2]].
+    const double a = 1 - c * dt, b = -w2 * dt, cc = dt * (1 - c * dt), d = 1 - w2 * dt * dt;
+    const double trace = a + d, det = a * d - b * cc;
+    const std::complex<double> root = std::sqrt(std::complex<double>(trace * trace - 4 * det));
+    return std::max(std::abs((trace + root) / 2.0), std::abs((trace - root) / 2.0));
+}
+
+SimulationSetup groundOnly(double ks, double kd) {
+    SimulationSetup setup;
+    setup.ground.ks = ks;
+    setup.ground.kd = kd;
+    EmitterSettings one;
+    one.count = 1;
+    setup.emitters = {one};
+    return setup;
+}
+
+/// A liquid drop of @p count globules falling onto the ground.
+SimulationSetup drop(int count, bool adaptive, double dt) {
+    SimulationSetup setup;
+    setup.simulation.integrator = "semi_implicit_euler";
+    setup.simulation.adaptive = adaptive;
+    setup.simulation.dt = dt;
+    EmitterSettings box;
+    box.type = "box";
+    box.spacing = 1.0;
+    box.count = count;
+    const double side = std::cbrt(double(count)) + 0.5;
+    box.min = {0, 2, 0};
+    box.max = {side, 2 + side, side};
+    setup.emitters = {box};
+    return setup;
+}
+
+Vec3 centroidOf(const Globules& g) {
+    Vec3 c{0, 0, 0};
+    for (std::size_t i = 0; i < g.size(); ++i) c = c + g.position(i);
+    return (1.0 / double(g.size())) * c;
+}
+
+}  // namespace
+
+TEST(StableStep, GroundAloneGivesTheOscillatorsBound) {
+    const double ks = 5000, kd = 300, mass = 2;
+    const StableStep stable(groundOnly(ks, kd));
+    const double c = kd / mass, w2 = ks / mass;
+    const double expected = 4 / (c + std::sqrt(c * c + 4 * w2));
+    EXPECT_NEAR(stable.contactBound(0, mass, 0.5, 1), expected, 1e-12 * expected);
+}
+
+TEST(StableStep, TheBoundIsSemiImplicitEulersExactStabilityLimit) {
+    // Damped and nearly undamped springs: the step's spectral radius reaches 1 at the bound.
+    for (const auto& [ks, kd] : {std::pair{5000.0, 300.0}, {5000.0, 1.0}, {100.0, 50.0}}) {
+        const StableStep stable(groundOnly(ks, kd));
+        const double mass = 1, bound = stable.contactBound(0, mass, 0.5, 1);
+        EXPECT_LE(spectralRadius(kd, ks, bound * (1 - 1e-6)), 1 + 1e-12) << ks << " " << kd;
+        EXPECT_GT(spectralRadius(kd, ks, bound * (1 + 1e-3)), 1) << ks << " " << kd;
+    }
+}
+
+TEST(StableStep, DenserMediaAndFasterGlobulesShortenTheStep) {
+    const StableStep stable(drop(8, true, 0.01));
+    const double sparse = stable.contactBound(0.05, 1, 0.5, 1);
+    const double dense = stable.contactBound(0.5, 1, 0.5, 1);
+    EXPECT_LT(dense, sparse);
+    Globules g;
+    g.add({0, 5, 0}, {0, 0, 0}, 0.5f, 1, 0);  // far apart: the ground alone
+    g.add({20, 5, 0}, {50, 0, 0}, 0.5f, 1, 1);
+    const StableStep::Bound fast = stable.bound(g);
+    // The fastest crosses a tenth of the smallest radius in one step.
+    EXPECT_NEAR(fast.speed, StableStep::kSpeedFraction * 0.5 / 50, 1e-12);
+    EXPECT_DOUBLE_EQ(fast.step(), StableStep::kSafety * std::min(fast.speed, fast.contact));
+}
+
+TEST(AdaptiveStepping, FramesEndOnTheirInstantsWithFewerSteps) {
+    const SimulationSetup adaptive = drop(125, true, 0.01), fixed = drop(125, false, 0.001);
+    Simulation a(adaptive), f(fixed);
+    NullReporter quiet;
+    for (int frame = 2; frame <= 30; ++frame) {
+        a.advanceFrame(frame, quiet);
+        f.advanceFrame(frame, quiet);
+        EXPECT_EQ(a.time(), f.time()) << "frame " << frame;
+    }
+    EXPECT_EQ(f.stepCount(), 29 * 40);
+    EXPECT_LT(a.stepCount(), f.stepCount() / 2);
+}
+
+TEST(AdaptiveStepping, ADropComesToRestWhereTheFixedStepPutsIt) {
+    // 4 s: the drop lands, spreads and settles; the rest state is the physics', not the step's.
+    const Globules a = stateAfter(drop(125, true, 0.01), 2, 100).globules;
+    const Globules f = stateAfter(drop(125, false, 0.001), 2, 100).globules;
+    ASSERT_EQ(a.size(), f.size());
+    const Vec3 ca = centroidOf(a), cf = centroidOf(f);
+    EXPECT_NEAR(ca.y, cf.y, 0.02);  // world units; a globule's radius is 0.5
+    EXPECT_NEAR(ca.x, cf.x, 0.05);
+    EXPECT_NEAR(ca.z, cf.z, 0.05);
+    double fastest = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) fastest = std::max(fastest, length(a.velocity(i)));
+    EXPECT_LT(fastest, 0.5);  // at rest, not jittering
+}
+
+TEST(AdaptiveStepping, MomentumIsConservedWithoutExternalForces) {
+    // No ground, no gravity: two drops collide; each pair's forces cancel.
+    SimulationSetup setup = drop(64, true, 0.01);
+    setup.ground.enabled = false;
+    setup.simulation.gravity = {0, 0, 0};
+    EmitterSettings other = setup.emitters[0];
+    other.min = {6, 2, 0};
+    other.max = {10, 6, 4};
+    other.velocity = {-8, 0, 0};
+    setup.emitters.push_back(other);
+    Simulation sim(setup);
+    const auto [before, scale] = momentumOf(sim.globules());
+    NullReporter quiet;
+    for (int f = 2; f <= 25; ++f) sim.advanceFrame(f, quiet);
+    const auto [after, unused] = momentumOf(sim.globules());
+    EXPECT_LT(length(after - before), 1e-4 * scale);
+}
+
+TEST(AdaptiveStepping, SameBitsOnAnyThreadCountAndWhenResumed) {
+    const SimulationSetup setup = drop(216, true, 0.01);
+    const SimulationState one = stateAfter(setup, 1, 20), two = stateAfter(setup, 2, 20);
+    EXPECT_EQ(one.globules.px, two.globules.px);
+    EXPECT_EQ(one.globules.vy, two.globules.vy);
+    EXPECT_EQ(one.steps, two.steps);
+
+    NullReporter quiet;
+    Simulation first(setup);
+    for (int f = 2; f <= 10; ++f) first.advanceFrame(f, quiet);
+    Simulation resumed(setup);
+    resumed.restoreState(first.saveState());
+    for (int f = 11; f <= 20; ++f) resumed.advanceFrame(f, quiet);
+    EXPECT_EQ(resumed.globules().px, two.globules.px);
+    EXPECT_EQ(resumed.globules().vy, two.globules.vy);
+    EXPECT_EQ(resumed.stepCount(), two.steps);
+}
