@@ -15,6 +15,11 @@
 # Times are wall seconds of those steps, from each side's own timers: globular's
 # "total", vdb_tool's -verbose lines (Points->SDF, SDF->mesh, Write geometry). Reading the
 # input and starting the process are left out on both sides.
+#
+# The last columns are what the surface stage does with the same particles beyond what
+# vdb_tool does ("frame": globular_surface_compare frame, fastest of REPEAT): the whole
+# frame (surfaceGlobules: also the fog, the "vel" grid and the mesh's per-vertex
+# velocity) with its VDB and PLY files written, and the VDB file's size.
 set -euo pipefail
 
 build=${1:-build}
@@ -34,11 +39,11 @@ trap 'rm -rf "$tmp"' EXIT
 
 faces() { grep -a -m1 '^element face' "$1" | awk '{print $3}'; }
 
-printf '%-10s %14s %14s %8s %12s %12s\n' globules "globular (s)" "vdb_tool (s)" ratio \
-    "our tris" "vdb faces"
+printf '%-10s %14s %14s %8s %12s %12s %10s %8s %10s\n' globules "globular (s)" "vdb_tool (s)" \
+    ratio "our tris" "vdb faces" "frame (s)" "/ vdb" "VDB (MB)"
 for n in "${counts[@]}"; do
     "$compare" points "$n" "$tmp/points.ply"
-    ours="" theirs=""
+    ours="" theirs="" frame="" bytes=""
     for ((r = 0; r < repeat; ++r)); do  # alternate the two, keep each side's fastest
         o=$("$compare" time "$n" "$voxel" "$tmp/ours.ply" | awk '$1 == "total" {print $2}')
         t=$(vdb_tool -verbose -read "$tmp/points.ply" \
@@ -49,11 +54,17 @@ for n in "${counts[@]}"; do
                      if (match($0, /\([0-9.]+ms\)/)) ms += substr($0, RSTART + 1, RLENGTH - 4)
                      else for (i = 1; i <= NF; ++i) if ($i == "in") ms += $(i + 1) }
                  END { printf "%.3f", ms / 1000 }')
+        f=$("$compare" frame "$n" "$voxel" "$tmp/frame")
+        ft=$(awk '$1 == "total" {print $2}' <<<"$f")
+        bytes=$(awk '$1 == "vdb_bytes" {print $2}' <<<"$f")
         [[ -z "$ours" ]] || (( $(echo "$o < $ours" | bc) )) && ours=$o
         [[ -z "$theirs" ]] || (( $(echo "$t < $theirs" | bc) )) && theirs=$t
+        [[ -z "$frame" ]] || (( $(echo "$ft < $frame" | bc) )) && frame=$ft
     done
     tris=$(( $(faces "$tmp/ours.ply") ))
-    printf '%-10s %14s %14s %8.2f %12s %12s\n' "$n" "$ours" "$theirs" \
-        "$(echo "$ours / $theirs" | bc -l)" "$tris" "$(faces "$tmp/vdb_tool.ply")"
+    printf '%-10s %14s %14s %8.2f %12s %12s %10s %8.2f %10.1f\n' "$n" "$ours" "$theirs" \
+        "$(echo "$ours / $theirs" | bc -l)" "$tris" "$(faces "$tmp/vdb_tool.ply")" "$frame" \
+        "$(echo "$frame / $theirs" | bc -l)" "$(echo "$bytes / 1000000" | bc -l)"
 done
-echo "ratio = globular / vdb_tool; machine: $(nproc) cores, $(uname -m)"
+echo "ratio = globular / vdb_tool; frame = the surface stage's whole frame and files;"
+echo "machine: $(nproc) cores, $(uname -m)"

@@ -301,6 +301,14 @@ MeanSplat splatMetaballsWithMean(const Globules& globules,
                                  const std::vector<const std::vector<float>*>& values,
                                  const MetaballKernel& kernel, double influence,
                                  double voxelSize, double deepAbove) {
+    return splatMetaballsWithMean(globules, GlobuleBins(globules, voxelSize, influence), values,
+                                  kernel, voxelSize, deepAbove);
+}
+
+MeanSplat splatMetaballsWithMean(const Globules& globules, const GlobuleBins& bins,
+                                 const std::vector<const std::vector<float>*>& values,
+                                 const MetaballKernel& kernel, double voxelSize,
+                                 double deepAbove) {
     if (values.empty() || values.size() > std::size_t(kMaxChannels)) {
         throw Error("splatMetaballsWithMean: " + std::to_string(values.size()) +
                     " value arrays (1 to " + std::to_string(kMaxChannels) + ")");
@@ -313,7 +321,6 @@ MeanSplat splatMetaballsWithMean(const Globules& globules,
         }
         channels.value[channels.count++] = v->data();
     }
-    const GlobuleBins bins(globules, voxelSize, influence);
     const std::size_t blocks = bins.candidateBlocks().size();
     std::vector<std::unique_ptr<LeafType>> leaves(blocks), weighted(values.size() * blocks);
     splatWithKernel<true>(bins, kernel, channels, float(deepAbove), leaves, weighted);

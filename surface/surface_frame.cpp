@@ -21,13 +21,15 @@ SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& se
     const MetaballKernel kernel = settings.metaballKernel();
     openvdb::FloatGrid::Ptr levelSet, temperature;
     std::vector<openvdb::FloatGrid::Ptr> velocity;  // x, y, z
+    // Binned once, for the splat and the mesh's vertex attributes.
+    const GlobuleBins bins(globules, frame.voxelSize, settings.influence);
     {
         // Deep inside the liquid the field's exact value is never read: partial sums there
         // (and the velocity and temperature there means over the nearer globules).
         std::vector<const std::vector<float>*> values{&globules.vx, &globules.vy, &globules.vz};
         if (!globules.temperature.empty()) values.push_back(&globules.temperature);
-        MeanSplat splat = splatMetaballsWithMean(globules, values, kernel, settings.influence,
-                                                 frame.voxelSize, settings.isoValue);
+        MeanSplat splat = splatMetaballsWithMean(globules, bins, values, kernel, frame.voxelSize,
+                                                 settings.isoValue);
         openvdb::FloatGrid::Ptr field = splat.field;
         velocity.assign(splat.means.begin(), splat.means.begin() + 3);
         if (!globules.temperature.empty()) temperature = splat.means[3];
@@ -39,6 +41,9 @@ SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& se
     // After the filters, which would round the cut's edges off the walls.
     if (settings.subtractColliders && !colliders.empty()) subtractColliders(*levelSet, colliders);
 
+    // The level set stays full floats on disk (its background is band_width voxels
+    // exactly, which readers compare against); the fog, velocity and temperature are
+    // saved as half floats (half the bytes, within what they are read for).
     auto grids = std::make_shared<SurfaceGrids>();
     grids->surface = levelSet;
     // The fog volume, the velocity, the temperature and the mesh only read the level set:
@@ -46,12 +51,12 @@ SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& se
     tbb::parallel_invoke(
         [&] { grids->density = levelSetToFog(*levelSet); },
         [&] {
-            // Where the temperature is: inside and two voxels beyond, so that a renderer's
-            // trilinear lookup at the surface blurs motion with the liquid's velocity.
-            for (auto& component : velocity) {
-                keepInside(*component, *levelSet, 2.0 * frame.voxelSize);
-            }
-            grids->vel = velocityGrid(*velocity[0], *velocity[1], *velocity[2]);
+            // In the narrow band, out to two voxels beyond the surface, so that a
+            // renderer's trilinear lookup at the surface blurs motion with the liquid's
+            // velocity; deeper inside nothing reads it (the fog is 1 there).
+            grids->vel = velocityInBand(*velocity[0], *velocity[1], *velocity[2], *levelSet,
+                                        2.0 * frame.voxelSize);
+            velocity.clear();
         },
         [&] {
             if (!temperature) return;
@@ -60,12 +65,14 @@ SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& se
             keepInside(*temperature, *levelSet, 2.0 * frame.voxelSize);
             temperature->setName("temperature");
             temperature->setGridClass(openvdb::GRID_UNKNOWN);
+            // Half floats: rounded to 2^-11 of the value (0.125 degrees below 512).
+            temperature->setSaveFloatAsHalf(true);
             grids->temperature = temperature;
         },
         [&] {
             frame.mesh = meshLevelSet(*levelSet, settings.adaptivity);
-            carryGlobuleAttributes(frame.mesh, globules, kernel, settings.influence,
-                                   frame.voxelSize, attributesOf(globules, severalMaterials));
+            carryGlobuleAttributes(frame.mesh, globules, bins, kernel, frame.voxelSize,
+                                   attributesOf(globules, severalMaterials));
         });
 
     // Provenance for whoever opens the file in a DCC tool.

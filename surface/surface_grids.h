@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "filter_chain.h"
+#include "globule_bins.h"
 #include "globules.h"
 #include "mesh.h"
 #include "metaball_kernel.h"
@@ -79,17 +80,28 @@ MeanSplat splatMetaballsWithMean(const Globules& globules,
                                  const MetaballKernel& kernel, double influence,
                                  double voxelSize,
                                  double deepAbove = std::numeric_limits<double>::infinity());
+/// The same with the globules already binned (@p bins of @p globules at @p voxelSize), so a
+/// frame bins its globules once for the splat and the mesh's vertex attributes.
+MeanSplat splatMetaballsWithMean(const Globules& globules, const GlobuleBins& bins,
+                                 const std::vector<const std::vector<float>*>& values,
+                                 const MetaballKernel& kernel, double voxelSize,
+                                 double deepAbove = std::numeric_limits<double>::infinity());
 
 /// Deactivates the voxels of @p grid where @p levelSet (same transform) is above
 /// @p margin (world units), sets them to the background and prunes what is left empty:
 /// @p grid is then defined inside the level set's surface and a margin beyond it.
 void keepInside(openvdb::FloatGrid& grid, const openvdb::FloatGrid& levelSet, double margin);
 
-/// The vector grid of three float grids of the same active voxels (splatMetaballsWithMean's
-/// means of vx, vy, vz after keepInside): named "vel", background 0, class unknown,
-/// vector type VEC_CONTRAVARIANT_RELATIVE (a velocity: Houdini's and Blender's grids).
-openvdb::Vec3SGrid::Ptr velocityGrid(const openvdb::FloatGrid& x, const openvdb::FloatGrid& y,
-                                     const openvdb::FloatGrid& z);
+/// The velocity in the level set's narrow band: the vector of three float grids of one
+/// leaf layout (splatMetaballsWithMean's means of vx, vy, vz) at the voxels where
+/// @p levelSet (same transform) is active and at most @p margin (world units) and the
+/// means are active; nothing deeper inside or farther out. Built leaf by leaf in
+/// parallel over the band's leaves. Named "vel", background 0, class unknown, vector type
+/// VEC_CONTRAVARIANT_RELATIVE (a velocity: Houdini's and Blender's grids), saved as half
+/// floats.
+openvdb::Vec3SGrid::Ptr velocityInBand(const openvdb::FloatGrid& x, const openvdb::FloatGrid& y,
+                                       const openvdb::FloatGrid& z,
+                                       const openvdb::FloatGrid& levelSet, double margin);
 
 /// The narrow-band level set (negative inside) of the field's @p isoValue surface,
 /// computed directly from the field (band_distance.cpp): sub-voxel distances where the

@@ -1,6 +1,7 @@
 #include "vertex_attributes.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cmath>
@@ -19,30 +20,42 @@ struct Weighted {
     float weight;
 };
 
-/// The globules whose influence reaches index-space point @p p, with their weights, in
-/// the bins' fixed order; @p nearest: the closest globule binned near it (any distance),
-/// or UINT32_MAX.
-void gather(const GlobuleBins& bins, const MetaballKernel& kernel, const double p[3],
-            std::vector<Weighted>& out, uint32_t& nearest) {
+/// A globule binned near a block: centre (index space) and squared influence radius.
+struct Candidate {
+    double x, y, z, r2;
+    uint32_t globule;
+};
+
+/// The globules whose influence may reach block @p key, in the bins' fixed order
+/// (forEachGlobuleNear): looked up once for all the vertices in that block.
+void candidatesNear(const GlobuleBins& bins, uint64_t key, std::vector<Candidate>& out) {
+    out.clear();
+    bins.forEachGlobuleNear(key, [&](uint32_t i) {
+        const double r = bins.influenceVoxels(i);
+        out.push_back({bins.centreX(i), bins.centreY(i), bins.centreZ(i), r * r, i});
+    });
+}
+
+/// The globules of @p candidates whose influence reaches index-space point @p p, with
+/// their weights, in the candidates' order; @p nearest: the closest candidate (any
+/// distance), or UINT32_MAX.
+void gather(const std::vector<Candidate>& candidates, const MetaballKernel& kernel,
+            const double p[3], std::vector<Weighted>& out, uint32_t& nearest) {
     out.clear();
     nearest = std::numeric_limits<uint32_t>::max();
     double nearestDistance = std::numeric_limits<double>::infinity();
-    constexpr int kShift = GlobuleBins::kBlockLog2;
-    const uint64_t key = GlobuleBins::pack(int64_t(std::floor(p[0])) >> kShift,
-                                           int64_t(std::floor(p[1])) >> kShift,
-                                           int64_t(std::floor(p[2])) >> kShift);
-    bins.forEachGlobuleNear(key, [&](uint32_t i) {
-        const double dx = bins.centreX(i) - p[0], dy = bins.centreY(i) - p[1],
-                     dz = bins.centreZ(i) - p[2];
+    for (const Candidate& c : candidates) {
+        const double dx = c.x - p[0], dy = c.y - p[1], dz = c.z - p[2];
         const double d2 = dx * dx + dy * dy + dz * dz;
         if (d2 < nearestDistance) {
             nearestDistance = d2;
-            nearest = i;
+            nearest = c.globule;
         }
-        const double r = bins.influenceVoxels(i);
-        const float w = kernel.value(float(d2 / (r * r)));
-        if (w > 0.0f) out.push_back({i, w});
-    });
+        // Beyond the influence radius the kernel is 0: most candidates, no kernel call.
+        if (!(d2 < c.r2)) continue;
+        const float w = kernel.value(float(d2 / c.r2));
+        if (w > 0.0f) out.push_back({c.globule, w});
+    }
 }
 
 }  // namespace
@@ -60,53 +73,85 @@ void carryGlobuleAttributes(TriangleMesh& mesh, const Globules& globules,
                             const MetaballKernel& kernel, double influence, double voxelSize,
                             CarriedAttributes which) {
     if (!which.any()) return;
+    carryGlobuleAttributes(mesh, globules, GlobuleBins(globules, voxelSize, influence), kernel,
+                           voxelSize, which);
+}
+
+void carryGlobuleAttributes(TriangleMesh& mesh, const Globules& globules,
+                            const GlobuleBins& bins, const MetaballKernel& kernel,
+                            double voxelSize, CarriedAttributes which) {
+    if (!which.any()) return;
     const std::size_t n = mesh.vertexCount();
     std::vector<float> velocity[3];
     for (auto& component : velocity) component.resize(which.velocity ? n : 0);
     std::vector<float> temperature(which.temperature ? n : 0);
     std::vector<float> material(which.material ? n : 0);
-    const GlobuleBins bins(globules, voxelSize, influence);
     const int materials = globules.material.empty()
                               ? 1
                               : 1 + *std::max_element(globules.material.begin(),
                                                       globules.material.end());
     const double toIndex = 1.0 / voxelSize;
 
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](auto range) {
-        std::vector<Weighted> near;
-        std::vector<double> perMaterial(materials);
+    // Vertices grouped by the block they lie in (then by index: a total order, so the
+    // parallel sort is deterministic); each block looks its candidate globules up once.
+    constexpr int kShift = GlobuleBins::kBlockLog2;
+    std::vector<std::pair<uint64_t, uint32_t>> byBlock(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](auto range) {
         for (std::size_t v = range.begin(); v < range.end(); ++v) {
-            const double p[3] = {mesh.positions[3 * v] * toIndex,
-                                 mesh.positions[3 * v + 1] * toIndex,
-                                 mesh.positions[3 * v + 2] * toIndex};
-            uint32_t nearest;
-            gather(bins, kernel, p, near, nearest);
-            if (near.empty() && nearest != std::numeric_limits<uint32_t>::max()) {
-                near.push_back({nearest, 1.0f});
-            }
-            // Kernel-weighted means, sum(w x) / sum(w), in one pass over the neighbours.
-            double sum = 0, weighted[3] = {0, 0, 0}, warmth = 0;
-            for (const Weighted& g : near) {
-                const double w = g.weight;
-                sum += w;
+            byBlock[v] = {GlobuleBins::pack(
+                              int64_t(std::floor(mesh.positions[3 * v] * toIndex)) >> kShift,
+                              int64_t(std::floor(mesh.positions[3 * v + 1] * toIndex)) >> kShift,
+                              int64_t(std::floor(mesh.positions[3 * v + 2] * toIndex)) >> kShift),
+                          uint32_t(v)};
+        }
+    });
+    tbb::parallel_sort(byBlock.begin(), byBlock.end());
+    std::vector<std::size_t> groupStart;
+    for (std::size_t k = 0; k < n; ++k) {
+        if (k == 0 || byBlock[k].first != byBlock[k - 1].first) groupStart.push_back(k);
+    }
+    groupStart.push_back(n);
+
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groupStart.size() - 1, 4), [&](auto groups) {
+        std::vector<Weighted> near;
+        std::vector<Candidate> candidates;
+        std::vector<double> perMaterial(materials);
+        for (std::size_t group = groups.begin(); group < groups.end(); ++group) {
+            candidatesNear(bins, byBlock[groupStart[group]].first, candidates);
+            for (std::size_t k = groupStart[group]; k < groupStart[group + 1]; ++k) {
+                const std::size_t v = byBlock[k].second;
+                const double p[3] = {mesh.positions[3 * v] * toIndex,
+                                     mesh.positions[3 * v + 1] * toIndex,
+                                     mesh.positions[3 * v + 2] * toIndex};
+                uint32_t nearest;
+                gather(candidates, kernel, p, near, nearest);
+                if (near.empty() && nearest != std::numeric_limits<uint32_t>::max()) {
+                    near.push_back({nearest, 1.0f});
+                }
+                // Kernel-weighted means, sum(w x) / sum(w), in one pass over the neighbours.
+                double sum = 0, weighted[3] = {0, 0, 0}, warmth = 0;
+                for (const Weighted& g : near) {
+                    const double w = g.weight;
+                    sum += w;
+                    if (which.velocity) {
+                        weighted[0] += w * globules.vx[g.globule];
+                        weighted[1] += w * globules.vy[g.globule];
+                        weighted[2] += w * globules.vz[g.globule];
+                    }
+                    if (which.temperature) warmth += w * globules.temperature[g.globule];
+                }
                 if (which.velocity) {
-                    weighted[0] += w * globules.vx[g.globule];
-                    weighted[1] += w * globules.vy[g.globule];
-                    weighted[2] += w * globules.vz[g.globule];
+                    for (int a = 0; a < 3; ++a) {
+                        velocity[a][v] = sum > 0 ? float(weighted[a] / sum) : 0.0f;
+                    }
                 }
-                if (which.temperature) warmth += w * globules.temperature[g.globule];
-            }
-            if (which.velocity) {
-                for (int a = 0; a < 3; ++a) {
-                    velocity[a][v] = sum > 0 ? float(weighted[a] / sum) : 0.0f;
+                if (which.temperature) temperature[v] = sum > 0 ? float(warmth / sum) : 0.0f;
+                if (which.material) {
+                    std::fill(perMaterial.begin(), perMaterial.end(), 0.0);
+                    for (const Weighted& g : near) perMaterial[globules.materialOf(g.globule)] += g.weight;
+                    material[v] = float(std::max_element(perMaterial.begin(), perMaterial.end()) -
+                                        perMaterial.begin());
                 }
-            }
-            if (which.temperature) temperature[v] = sum > 0 ? float(warmth / sum) : 0.0f;
-            if (which.material) {
-                std::fill(perMaterial.begin(), perMaterial.end(), 0.0);
-                for (const Weighted& g : near) perMaterial[globules.materialOf(g.globule)] += g.weight;
-                material[v] = float(std::max_element(perMaterial.begin(), perMaterial.end()) -
-                                    perMaterial.begin());
             }
         }
     });

@@ -13,6 +13,7 @@
 // values among those binned near it, or temperature 0 and material 0 when there is none.
 // OpenVDB-free.
 
+#include "globule_bins.h"
 #include "globules.h"
 #include "mesh.h"
 #include "metaball_kernel.h"
@@ -41,5 +42,12 @@ CarriedAttributes attributesOf(const Globules& globules, bool severalMaterials =
 void carryGlobuleAttributes(TriangleMesh& mesh, const Globules& globules,
                             const MetaballKernel& kernel, double influence, double voxelSize,
                             CarriedAttributes which);
+
+/// The same with the globules already binned (@p bins of @p globules at @p voxelSize and
+/// the surface's influence: the splat's bins, built once per frame). Vertices are taken
+/// block by block, each block looking its globules up once.
+void carryGlobuleAttributes(TriangleMesh& mesh, const Globules& globules,
+                            const GlobuleBins& bins, const MetaballKernel& kernel,
+                            double voxelSize, CarriedAttributes which);
 
 }  // namespace globular

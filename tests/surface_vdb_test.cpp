@@ -5,9 +5,11 @@
 #include <tbb/task_arena.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <random>
+#include <utility>
 
 #include "globule_bins.h"
 #include "grid_compare.h"
@@ -244,6 +246,34 @@ TEST(SurfaceVdb, FileHoldsTheDocumentedGrids) {
     EXPECT_NE(printed.find("level set"), std::string::npos) << printed;
     EXPECT_NE(printed.find("fog volume"), std::string::npos) << printed;
     EXPECT_NE(printed.find("voxel size: 0.1"), std::string::npos) << printed;
+}
+
+TEST(SurfaceVdb, FileStoresTheFogAsHalfFloatsAndTheLevelSetExactly) {
+    SurfaceSettings s;
+    s.voxelSize = 0.1;
+    const SurfaceFrame frame = surfaceGlobules(someGlobules(30, 11), s);
+    EXPECT_FALSE(frame.grids->surface->saveFloatAsHalf());
+    EXPECT_TRUE(frame.grids->density->saveFloatAsHalf());
+    const fs::path path = fs::temp_directory_path() / "globular_surface_vdb_test" / "half.vdb";
+    writeSurfaceVdb(path, frame);
+    const SurfaceGrids back = readSurfaceVdb(path);
+    fs::remove(path);
+    ASSERT_TRUE(back.surface && back.density);
+    expectSameGrid(*back.surface, *frame.grids->surface);
+    // Half floats round to 2^-11 of the value (and below 2^-14 to steps of 2^-24).
+    constexpr float kHalfRelative = 1.0f / 2048.0f;
+    const auto& written = frame.grids->density;
+    const auto& read = back.density;
+    EXPECT_EQ(read->activeVoxelCount(), written->activeVoxelCount());
+    EXPECT_EQ(read->background(), written->background());
+    auto before = written->getConstAccessor();
+    std::size_t rounded = 0;
+    for (auto it = read->cbeginValueOn(); it; ++it) {
+        const float w = before.getValue(it.getCoord());
+        ASSERT_NEAR(*it, w, std::abs(w) * kHalfRelative + 6e-8f) << it.getCoord();
+        rounded += *it != w;
+    }
+    EXPECT_GT(rounded, 0u);  // the file really holds halves
 }
 
 TEST(SurfaceVdb, GridsAreIdenticalForOneAndTwoThreads) {

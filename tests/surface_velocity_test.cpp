@@ -73,10 +73,27 @@ TEST(SurfaceVelocity, BlockMovingTogetherHasItsVelocityEverywhere) {
         ASSERT_NEAR((*it)[1], -2.0f, 1e-5f) << it.getCoord();
         ASSERT_NEAR((*it)[2], 0.25f, 1e-5f) << it.getCoord();
     }
-    // Defined through the liquid (the block's centre), not far outside.
+    // Defined in the level set's narrow band out to two voxels beyond the surface: at
+    // every band voxel there and nowhere else, so not deep inside (the block's centre,
+    // 8 voxels in, where nothing reads it) nor far outside.
+    const openvdb::FloatGrid& levelSet = *frame.grids->surface;
+    auto band = levelSet.getConstAccessor();
     auto acc = vel.getConstAccessor();
+    const float margin = float(2.0 * frame.voxelSize);
+    for (auto it = vel.cbeginValueOn(); it; ++it) {
+        ASSERT_TRUE(band.isValueOn(it.getCoord())) << it.getCoord();
+        ASSERT_LE(band.getValue(it.getCoord()), margin) << it.getCoord();
+    }
+    std::size_t inBand = 0;
+    for (auto it = levelSet.cbeginValueOn(); it; ++it) {
+        if (*it > margin) continue;
+        ++inBand;
+        ASSERT_TRUE(acc.isValueOn(it.getCoord())) << it.getCoord();
+    }
+    EXPECT_EQ(inBand, vel.activeVoxelCount());
     const int centre = int(std::lround(1.65 / frame.voxelSize));
-    EXPECT_TRUE(acc.isValueOn(openvdb::Coord(centre, centre, centre)));
+    EXPECT_LT(band.getValue(openvdb::Coord(centre, centre, centre)), -margin);
+    EXPECT_FALSE(acc.isValueOn(openvdb::Coord(centre, centre, centre)));
     EXPECT_FALSE(acc.isValueOn(openvdb::Coord(-int(std::ceil(3.0 / frame.voxelSize)), 0, 0)));
 
     const auto& vx = valuesOf(frame.mesh, "vx");
@@ -109,8 +126,13 @@ TEST(SurfaceVelocity, TwoVelocitiesGiveTheKernelWeightedMean) {
         mixed += expected.x > 0.1 && expected.x < 1.9;
     }
     EXPECT_GT(mixed, 100u);
-    // Between the centres the weights are comparable: a true mix, not a pick.
-    const openvdb::Vec3s middle = vel.getConstAccessor().getValue(openvdb::Coord(0, 0, 0));
+    // Between the centres the weights are comparable: a true mix, not a pick. (The grid
+    // holds the narrow band: the first voxel of it straight above the point between them.)
+    auto acc = vel.getConstAccessor();
+    int z = 0;
+    while (z < 20 && !acc.isValueOn(openvdb::Coord(0, 0, z))) ++z;
+    ASSERT_LT(z, 20);
+    const openvdb::Vec3s middle = acc.getValue(openvdb::Coord(0, 0, z));
     EXPECT_GT(middle[0], 0.3f);
     EXPECT_LT(middle[0], 1.7f);
 
@@ -126,6 +148,39 @@ TEST(SurfaceVelocity, TwoVelocitiesGiveTheKernelWeightedMean) {
         ASSERT_NEAR(vy[i], expected.y, 1e-4) << i;
         ASSERT_NEAR(vz[i], expected.z, 1e-4) << i;
     }
+}
+
+/// The file stores "vel" as half floats: 11 significant bits, so a value read back is
+/// within 2^-11 of its magnitude of the value written (round to nearest).
+constexpr float kHalfRelative = 1.0f / 2048.0f;
+
+TEST(SurfaceVelocity, VelGridTravelsAsHalfFloatsWithinTheirPrecision) {
+    Globules g;
+    g.add({-0.6, 0, 0}, {2.1, 0.03, -7.7}, 1.0f, 1.0f, 0);
+    g.add({0.7, 0.2, 0}, {0.01, 1.3, -1.9}, 1.3f, 1.0f, 1);
+    const SurfaceFrame frame = surfaceGlobules(g, coarse());
+    ASSERT_TRUE(frame.grids->vel);
+    EXPECT_TRUE(frame.grids->vel->saveFloatAsHalf());
+    const fs::path path = fs::path(testing::TempDir()) /
+                          ("surface_velocity_half_" + std::to_string(::getpid()) + ".vdb");
+    writeSurfaceVdb(path, frame);
+    const SurfaceGrids back = readSurfaceVdb(path);
+    fs::remove(path);
+    ASSERT_TRUE(back.vel);
+    ASSERT_EQ(back.vel->activeVoxelCount(), frame.grids->vel->activeVoxelCount());
+    auto written = frame.grids->vel->getConstAccessor();
+    std::size_t rounded = 0;
+    for (auto it = back.vel->cbeginValueOn(); it; ++it) {
+        ASSERT_TRUE(written.isValueOn(it.getCoord()));
+        const openvdb::Vec3s w = written.getValue(it.getCoord());
+        for (int a = 0; a < 3; ++a) {
+            // Half floats below 2^-14 are subnormal: a fixed step of 2^-24 there.
+            ASSERT_NEAR((*it)[a], w[a], std::abs(w[a]) * kHalfRelative + 6e-8f)
+                << it.getCoord() << " axis " << a;
+            rounded += (*it)[a] != w[a];
+        }
+    }
+    EXPECT_GT(rounded, 0u);  // really stored as half floats, not full ones
 }
 
 TEST(SurfaceVelocity, VelGridAndMeshVelocityTravelInTheFiles) {
@@ -147,10 +202,10 @@ TEST(SurfaceVelocity, VelGridAndMeshVelocityTravelInTheFiles) {
     EXPECT_EQ(back.vel->getName(), "vel");
     EXPECT_EQ(back.vel->getVectorType(), openvdb::VEC_CONTRAVARIANT_RELATIVE);
     EXPECT_EQ(back.vel->activeVoxelCount(), frame.grids->vel->activeVoxelCount());
-    for (auto it = back.vel->cbeginValueOn(); it; ++it) {
+    for (auto it = back.vel->cbeginValueOn(); it; ++it) {  // half floats in the file
         ASSERT_NEAR((*it)[0], 0.0f, 1e-5f);
-        ASSERT_NEAR((*it)[1], 3.0f, 1e-5f);
-        ASSERT_NEAR((*it)[2], -1.0f, 1e-5f);
+        ASSERT_NEAR((*it)[1], 3.0f, 3.0f * kHalfRelative);
+        ASSERT_NEAR((*it)[2], -1.0f, 1.0f * kHalfRelative);
     }
     ASSERT_EQ(mesh.vertexCount(), frame.mesh.vertexCount());
     EXPECT_EQ(valuesOf(mesh, "vy"), valuesOf(frame.mesh, "vy"));
