@@ -18,3 +18,7 @@ target_link_libraries(halo_fraction PRIVATE globular_sim)
 add_executable(mesh_collider_bench mesh_collider_bench.cpp)
 target_link_libraries(mesh_collider_bench PRIVATE globular_sim benchmark::benchmark)
 target_compile_definitions(mesh_collider_bench PRIVATE GLOBULAR_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+
+# The per-frame statistics' share of a frame (issue 18).
+add_executable(frame_stats_bench frame_stats_bench.cpp)
+target_link_libraries(frame_stats_bench PRIVATE globular_sim)

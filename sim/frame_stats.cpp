@@ -73,36 +73,51 @@ std::vector<std::size_t> clusterSizes(const Globules& g) {
     if (maxRadius > 0) {
         const float cellSize = 2 * maxRadius;  // covers the largest overlap distance
         std::vector<uint32_t> member;          // grid point k is globule member[k]
-        std::vector<float> x, y, z;
+        member.reserve(n);
         for (std::size_t i = 0; i < n; ++i) {
-            if (!binnable(g, i, cellSize)) continue;
-            member.push_back(uint32_t(i));
-            x.push_back(g.px[i]);
-            y.push_back(g.py[i]);
-            z.push_back(g.pz[i]);
+            if (binnable(g, i, cellSize)) member.push_back(uint32_t(i));
+        }
+        const std::size_t m = member.size();
+        std::vector<float> x(m), y(m), z(m), r(m);
+        for (std::size_t k = 0; k < m; ++k) {
+            x[k] = g.px[member[k]];
+            y[k] = g.py[member[k]];
+            z[k] = g.pz[member[k]];
         }
         NeighborGrid grid;
-        grid.build(x.data(), y.data(), z.data(), member.size(), cellSize);
-        // Visit in the grid's bucket order: neighbours then sit close in memory (several
-        // times faster than input order for a million globules).
+        grid.build(x.data(), y.data(), z.data(), m, cellSize);
+        // Copies in the grid's order: a query's runs are then contiguous ranges of these
+        // arrays, read straight through, and a pair is tested once, from its earlier end.
         const std::vector<uint32_t>& order = grid.sortedOrder();
-        const auto linkOverlapping = [&](std::size_t s) {
-            const uint32_t k = order[s], i = member[k];
-            grid.forEachCandidate(x[k], y[k], z[k], [&](uint32_t l) {
-                const uint32_t j = member[l];
-                if (j <= i) return;  // each pair once
-                const double dx = double(x[l]) - x[k], dy = double(y[l]) - y[k],
-                             dz = double(z[l]) - z[k];
-                const double reach = double(g.radius[i]) + g.radius[j];
-                if (dx * dx + dy * dy + dz * dz < reach * reach) sets.unite(i, j);
+        std::vector<uint32_t> id(m);
+        for (std::size_t s = 0; s < m; ++s) {
+            id[s] = member[order[s]];
+            r[s] = g.radius[id[s]];
+        }
+        for (std::size_t s = 0; s < m; ++s) {  // in place: x, y, z now in grid order
+            x[s] = g.px[id[s]];
+            y[s] = g.py[id[s]];
+            z[s] = g.pz[id[s]];
+        }
+        tbb::parallel_for(
+            tbb::blocked_range<std::size_t>(0, m, 1024),
+            [&](const tbb::blocked_range<std::size_t>& range) {
+                NeighborGrid::RunCursor cursor;
+                std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> runs;
+                for (std::size_t s = range.begin(); s < range.end(); ++s) {
+                    const int count = grid.neighborRuns(x[s], y[s], z[s], cursor, runs);
+                    for (int q = 0; q < count; ++q) {
+                        for (std::size_t l = std::max<std::size_t>(runs[q].first, s + 1);
+                             l < runs[q].second; ++l) {
+                            const float dx = x[l] - x[s], dy = y[l] - y[s], dz = z[l] - z[s];
+                            const float reach = r[s] + r[l];
+                            if (dx * dx + dy * dy + dz * dz < reach * reach) {
+                                sets.unite(id[s], id[l]);
+                            }
+                        }
+                    }
+                }
             });
-        };
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size(), 1024),
-                          [&](const tbb::blocked_range<std::size_t>& range) {
-                              for (std::size_t s = range.begin(); s < range.end(); ++s) {
-                                  linkOverlapping(s);
-                              }
-                          });
     }
     std::vector<std::size_t> sizeOfRoot(n, 0);
     for (std::size_t i = 0; i < n; ++i) ++sizeOfRoot[sets.find(uint32_t(i))];
