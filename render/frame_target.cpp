@@ -181,10 +181,11 @@ void FrameTarget::resolveAndRead(int attachment, GLenum format, std::vector<floa
     glReadPixels(0, 0, mWidth, mHeight, format, GL_FLOAT, out.data());
 }
 
-void FrameTarget::read(LinearFrame& frame, bool motion) const {
+void FrameTarget::read(LinearFrame& frame, bool motion, bool withPasses) const {
     resolveAndRead(0, GL_RGBA, mReadback);
-    motion = motion && mPasses;
-    if (mPasses) {
+    const bool passes = mPasses && withPasses;
+    motion = motion && passes;
+    if (passes) {
         resolveAndRead(2, GL_RGBA, mNormalReadback);
         resolveAndRead(3, GL_RED, mDistanceReadback);
     }
@@ -200,6 +201,7 @@ void FrameTarget::read(LinearFrame& frame, bool motion) const {
         const float* in = &mReadback[std::size_t(mHeight - 1 - y) * w * 4];
         std::copy(in, in + 4 * w, &frame.rgba[std::size_t(y) * w * 4]);
     }
+    if (mPasses && !withPasses) return;
     frame.motion.clear();
     if (!mPasses) {
         frame.depth.clear();

@@ -40,8 +40,9 @@ class FrameTarget {
     void bind() const;
 
     /// Averages the samples and reads the image into @p frame (rows top first), with the
-    /// passes when the target has them (motion too when @p motion).
-    void read(LinearFrame& frame, bool motion = false) const;
+    /// passes when the target has them and @p withPasses (motion too when @p motion);
+    /// without, @p frame's passes are left as they were.
+    void read(LinearFrame& frame, bool motion = false, bool withPasses = true) const;
     bool passes() const { return mPasses; }
 
     int width() const { return mWidth; }

@@ -12,6 +12,7 @@
 #include "contact_sheet.h"
 #include "errors.h"
 #include "exr_image.h"
+#include "frame_writer.h"
 #include "gl_context.h"
 #include "frame_paths.h"
 #include "globule_cache.h"
@@ -29,12 +30,6 @@ namespace globular {
 namespace fs = std::filesystem;
 
 namespace {
-
-/// frames/frame.NNNN.exr beside frames/frame.NNNN.png.
-fs::path frameExrPath(const fs::path& png) {
-    fs::path exr = png;
-    return exr.replace_extension(".exr");
-}
 
 Globules readCache(const fs::path& outDir, int frame) {
     const fs::path path = cacheVdbPath(outDir, frame);
@@ -334,11 +329,12 @@ void runRenderStage(const RenderJob& job, const StageContext& ctx) {
                       int(job.render.shadowMapSize), job.render.exr);
     const ToneMapping tone = ToneMapping::from(job.render.exposure, job.render.toneMapping);
     ctx.report().progress("render", 0, total);
+    FrameWriter writer(tone, int(job.render.pngBits), job.render.exr);
+    LinearFrame drawn;
     for (int f = ctx.firstFrame; f <= ctx.lastFrame; ++f) {
         FrameSetup frameSetup = setup;
         frameSetup.props = propsAt(job, solids, ctx, f);
         frameSetup.camera = plan.cameraFor(f);
-        Image image;
         if (job.render.mode == "surface") {
             const TriangleMesh mesh = readMesh(job, ctx.outDir, f);
             // An empty frame (nothing emitted yet) has nothing to colour.
@@ -347,25 +343,27 @@ void runRenderStage(const RenderJob& job, const StageContext& ctx) {
             checkRenderMemory(job.render,
                               estimateMeshBytes(mesh.vertexCount(), mesh.triangleCount()),
                               available, "frame " + std::to_string(f));
-            image = renderer.drawMesh(viewOf(mesh, job.render.colorBy), frameSetup);
+            renderer.renderMesh(viewOf(mesh, job.render.colorBy), frameSetup);
         } else {
             const Globules globules = readCache(ctx.outDir, f);
             checkTemperature(job, !globules.temperature.empty() || globules.empty(),
                              cacheVdbPath(ctx.outDir, f));
             checkRenderMemory(job.render, estimateSphereBytes(globules.size()), available,
                               "frame " + std::to_string(f));
-            image = job.render.mode == "fluid" ? renderer.drawFluid(globules, frameSetup)
-                                               : renderer.drawSpheres(globules, frameSetup);
+            if (job.render.mode == "fluid") {
+                renderer.renderFluid(globules, frameSetup);
+            } else {
+                renderer.renderSpheres(globules, frameSetup);
+            }
         }
-        const fs::path png = framePngPath(ctx.outDir, f);
-        if (job.render.pngBits == 16) {
-            writePng(png, encode16(renderer.lastFrame(), tone));
-        } else {
-            writePng(png, image);
-        }
-        if (job.render.exr) writeExr(frameExrPath(png), renderer.lastFrame());
-        ctx.report().progress("render", f - ctx.firstFrame + 1, total);
+        renderer.takeFrame(drawn);
+        // Frame f is encoded and written while frame f + 1 is drawn; its progress is
+        // reported once it is on disk.
+        writer.write(drawn, framePngPath(ctx.outDir, f));
+        if (f > ctx.firstFrame) ctx.report().progress("render", f - ctx.firstFrame, total);
     }
+    writer.finish();
+    ctx.report().progress("render", total, total);
     const std::vector<int> missing = finish(job, plan, ctx);
     if (!missing.empty()) {
         ctx.report().info("render: contact sheet and movie wait for frame(s) " +

@@ -136,6 +136,7 @@ struct Renderer::Impl {
     std::optional<detail::OcclusionPass> occlusion;
     LinearFrame frame;
     bool culling = true;
+    bool readPasses = true;  // false: a later sub-frame, whose passes are not kept
     GlBackend backend = GlBackend::OSMesa;  // its GL objects live in this back end's context
 
     Impl(int w, int h, int n, int shadowSize, bool passes)
@@ -243,11 +244,12 @@ struct Renderer::Impl {
     }
 
     /// Draws the frame of @p s as the average of its sub-frames (sub_frames.h) into
-    /// `frame`, and returns it encoded. @p drawSub(setup, seconds) draws one sub-frame
-    /// into `frame` with the content moved on by @p seconds.
+    /// `frame`. @p drawSub(setup, seconds) draws one sub-frame into `frame` with the
+    /// content moved on by @p seconds.
     template <typename DrawSub>
-    Image accumulate(const FrameSetup& s, DrawSub&& drawSub) {
+    void accumulate(const FrameSetup& s, DrawSub&& drawSub) {
         const std::vector<SubFrame> subs = subFrames(s.render, s.frameSeconds);
+        readPasses = true;
         if (subs.size() == 1) {
             drawSub(s, subs.front().seconds);
         } else {
@@ -257,6 +259,7 @@ struct Renderer::Impl {
             for (std::size_t k = 0; k < subs.size(); ++k) {
                 FrameSetup sub = s;
                 sub.camera = throughLens(s.camera, subs[k]);
+                readPasses = k == 0;  // the passes come from the first sub-frame alone
                 drawSub(sub, subs[k].seconds);
                 const PixelShift shift = lensShift(s.camera, subs[k], s.render, focalX, focalY);
                 if (k == 0) {
@@ -274,8 +277,8 @@ struct Renderer::Impl {
             const float weight = 1.0f / float(subs.size());
             for (float& v : sum.rgba) v *= weight;
             frame = std::move(sum);
+            readPasses = true;
         }
-        return encode8(frame, ToneMapping::from(s.render.exposure, s.render.toneMapping));
     }
 
     /// Draws one (sub-)frame into `frame`: @p content has prepare(f), shadow(f) and
@@ -325,12 +328,12 @@ struct Renderer::Impl {
         if (s.render.ground) ground.draw(f, look);
         occlude(f, s, box);
         if (isLiquid(content)) content.draw(f);
-        target.read(frame, f.frameSeconds > 0);
+        target.read(frame, f.frameSeconds > 0, readPasses);
         gl::checkErrors("drawing a frame");
     }
 
-    Image drawFluid(const Globules& globules, const FrameSetup& s);
-    Image drawLiquidMesh(const MeshView& mesh, const FrameSetup& s);
+    void drawFluid(const Globules& globules, const FrameSetup& s);
+    void drawLiquidMesh(const MeshView& mesh, const FrameSetup& s);
 };
 
 Renderer::Renderer(int width, int height, int samples, int shadowMapSize, bool passes) {
@@ -356,7 +359,30 @@ Renderer::~Renderer() {
     }
 }
 
+namespace {
+
+Image encoded(const LinearFrame& frame, const FrameSetup& setup) {
+    return encode8(frame, ToneMapping::from(setup.render.exposure, setup.render.toneMapping));
+}
+
+}  // namespace
+
 Image Renderer::drawSpheres(const Globules& globules, const FrameSetup& setup) {
+    renderSpheres(globules, setup);
+    return encoded(lastFrame(), setup);
+}
+
+Image Renderer::drawMesh(const MeshView& mesh, const FrameSetup& setup) {
+    renderMesh(mesh, setup);
+    return encoded(lastFrame(), setup);
+}
+
+Image Renderer::drawFluid(const Globules& globules, const FrameSetup& setup) {
+    renderFluid(globules, setup);
+    return encoded(lastFrame(), setup);
+}
+
+void Renderer::renderSpheres(const Globules& globules, const FrameSetup& setup) {
     makeGlContextCurrent(mImpl->backend);
     Impl& im = *mImpl;
     if (!im.spheres) im.spheres.emplace(im.samples);
@@ -381,7 +407,7 @@ Image Renderer::drawSpheres(const Globules& globules, const FrameSetup& setup) {
         }
     };
     const detail::SpherePass::Value value = sphereValue(globules, s.render.colorBy);
-    return im.accumulate(s, [&](const FrameSetup& sub, double seconds) {
+    im.accumulate(s, [&](const FrameSetup& sub, double seconds) {
         if (seconds == 0) {
             im.draw(sub, own.box, Content{*im.spheres, im.target, globules, value});
         } else {
@@ -391,10 +417,13 @@ Image Renderer::drawSpheres(const Globules& globules, const FrameSetup& setup) {
     });
 }
 
-Image Renderer::drawMesh(const MeshView& mesh, const FrameSetup& setup) {
+void Renderer::renderMesh(const MeshView& mesh, const FrameSetup& setup) {
     makeGlContextCurrent(mImpl->backend);
     Impl& im = *mImpl;
-    if (setup.liquidSurface) return im.drawLiquidMesh(mesh, setup);
+    if (setup.liquidSurface) {
+        im.drawLiquidMesh(mesh, setup);
+        return;
+    }
     if (!im.mesh) im.mesh.emplace();
     FrameSetup s = setup;
     if (s.render.colorBy == "temperature" && !mesh.values && mesh.vertexCount > 0) {
@@ -417,15 +446,15 @@ Image Renderer::drawMesh(const MeshView& mesh, const FrameSetup& setup) {
         }
     };
     std::vector<float> moved;  // the sub-frame's positions, when the mesh has velocities
-    return im.accumulate(s, [&](const FrameSetup& sub, double seconds) {
+    im.accumulate(s, [&](const FrameSetup& sub, double seconds) {
         const MeshView view = movedBy(mesh, seconds, moved);
         im.draw(sub, own.box, Content{*im.mesh, view});
     });
 }
 
-Image Renderer::drawFluid(const Globules& globules, const FrameSetup& setup) {
+void Renderer::renderFluid(const Globules& globules, const FrameSetup& setup) {
     makeGlContextCurrent(mImpl->backend);
-    return mImpl->drawFluid(globules, setup);
+    mImpl->drawFluid(globules, setup);
 }
 
 namespace {
@@ -467,7 +496,7 @@ Globules opaqueGlobules(const Globules& g, const std::vector<LiquidOptics>& opti
 
 }  // namespace
 
-Image Renderer::Impl::drawFluid(const Globules& globules, const FrameSetup& setup) {
+void Renderer::Impl::drawFluid(const Globules& globules, const FrameSetup& setup) {
     if (!fluid) fluid.emplace();
     FrameSetup s = setup;
     SceneExtent own;
@@ -502,7 +531,7 @@ Image Renderer::Impl::drawFluid(const Globules& globules, const FrameSetup& setu
     if (!opaque.empty() && !spheres) spheres.emplace(samples);
     const detail::SpherePass::Value value = sphereValue(opaque, s.render.colorBy);
     if (spheres) spheres->setCulling(culling);
-    return accumulate(s, [&](const FrameSetup& sub, double seconds) {
+    accumulate(s, [&](const FrameSetup& sub, double seconds) {
         if (seconds == 0) {
             draw(sub, own.box, Content{*this, globules, opaque, look, value});
         } else {
@@ -513,7 +542,7 @@ Image Renderer::Impl::drawFluid(const Globules& globules, const FrameSetup& setu
     });
 }
 
-Image Renderer::Impl::drawLiquidMesh(const MeshView& mesh, const FrameSetup& setup) {
+void Renderer::Impl::drawLiquidMesh(const MeshView& mesh, const FrameSetup& setup) {
     if (!liquidMesh) liquidMesh.emplace();
     FrameSetup s = setup;
     SceneExtent own;
@@ -530,7 +559,7 @@ Image Renderer::Impl::drawLiquidMesh(const MeshView& mesh, const FrameSetup& set
         void draw(const FrameUniforms& f) { pass.draw(f, look, optics); }
     };
     std::vector<float> moved;  // the sub-frame's positions, when the mesh has velocities
-    return accumulate(s, [&](const FrameSetup& sub, double seconds) {
+    accumulate(s, [&](const FrameSetup& sub, double seconds) {
         const MeshView view = movedBy(mesh, seconds, moved);
         draw(sub, own.box,
              Content{*liquidMesh, view, liquidLook(s), opticsOf(s.materialOptics, 0)});
@@ -540,6 +569,8 @@ Image Renderer::Impl::drawLiquidMesh(const MeshView& mesh, const FrameSetup& set
 void Renderer::setOcclusionCulling(bool on) { mImpl->culling = on; }
 
 const LinearFrame& Renderer::lastFrame() const { return mImpl->frame; }
+
+void Renderer::takeFrame(LinearFrame& frame) { std::swap(frame, mImpl->frame); }
 
 int Renderer::width() const { return mImpl->width; }
 int Renderer::height() const { return mImpl->height; }

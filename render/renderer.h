@@ -86,6 +86,17 @@ class Renderer {
     /// those of opaque materials as spheres. Non-finite globules are skipped.
     Image drawFluid(const Globules& globules, const FrameSetup& setup);
 
+    /// As drawSpheres, drawMesh and drawFluid, but the frame is only drawn into
+    /// lastFrame(), not encoded: for a caller that encodes it itself (16 bits, or on
+    /// another thread after takeFrame).
+    void renderSpheres(const Globules& globules, const FrameSetup& setup);
+    void renderMesh(const MeshView& mesh, const FrameSetup& setup);
+    void renderFluid(const Globules& globules, const FrameSetup& setup);
+
+    /// Exchanges lastFrame() with @p frame: hands the frame drawn last over without a
+    /// copy; the next draw reuses @p frame's buffers (any LinearFrame will do).
+    void takeFrame(LinearFrame& frame);
+
     /// Occlusion culling of hidden spheres before drawing (on by default). The image is
     /// the same either way; off is for tests and measurements.
     void setOcclusionCulling(bool on);
