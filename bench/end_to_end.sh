@@ -5,6 +5,11 @@
 #
 #   bench/end_to_end.sh [BUILD_DIR] [OUT_DIR]      (defaults: build, a temporary directory)
 #   FRAMES=24 bench/end_to_end.sh ...              a shorter shot (the first FRAMES frames)
+#   LOOK=paper bench/end_to_end.sh ...             the paper's look: an opaque shaded surface,
+#                                                  no tone mapping (default LOOK=film: the
+#                                                  liquid look with ACES tone mapping)
+#   FIXED_DT=1 bench/end_to_end.sh ...             the paper's fixed dt 0.001 instead of
+#                                                  adaptive steps
 #
 # Prints, per stage and in total: wall seconds, peak resident memory (of that stage's
 # process; the total's is the largest), and what was written. OUT_DIR is kept when given.
@@ -25,8 +30,16 @@ else
 fi
 frames=${FRAMES:-240}
 args=(--out "$out" --quiet --set "simulation.frames=$frames")
+look=${LOOK:-film}
+case $look in
+    film) ;;
+    paper) args+=(--set material.look=opaque --set render.tone_mapping=none) ;;
+    *) echo "LOOK must be film or paper, not '$look'" >&2; exit 1 ;;
+esac
+[[ ${FIXED_DT:-0} == 1 ]] && args+=(--set simulation.adaptive=false --set simulation.dt=0.001)
 
-printf '# end to end: %s, %s frames, %s\n' "$(basename "$scene")" "$frames" "$(nproc) cores"
+printf '# end to end: %s, %s frames, %s look, %s, %s cores\n' "$(basename "$scene")" "$frames" \
+    "$look" "$([[ ${FIXED_DT:-0} == 1 ]] && echo 'fixed dt 0.001' || echo 'adaptive steps')" "$(nproc)"
 printf '%-8s %10s %14s  %s\n' stage "wall (s)" "peak RSS (MiB)" written
 total_wall=0 peak=0
 for stage in sim surface render; do

@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -20,6 +22,20 @@ namespace globular {
 namespace fs = std::filesystem;
 
 namespace {
+
+/// The run's summary of adaptive steps: what they saved against the fixed step a run
+/// would need to be as stable throughout, the shortest adaptive step taken.
+std::string adaptiveSummary(int64_t steps, double seconds, double shortest) {
+    const double mean = seconds / double(std::max<int64_t>(steps, 1));
+    if (!std::isfinite(shortest)) shortest = mean;  // every step ended a frame
+    const double fixed = std::ceil(seconds / shortest - 1e-9);
+    std::ostringstream out;
+    out.precision(3);
+    out << "sim: adaptive time steps: " << steps << " steps (mean " << mean << " s, shortest "
+        << shortest << " s); a fixed step as short as the shortest would take " << fixed
+        << " (" << 100.0 * (fixed - double(steps)) / fixed << "% saved)";
+    return out.str();
+}
 
 std::size_t physicalMemoryBytes() {
     const long pages = ::sysconf(_SC_PHYS_PAGES), pageSize = ::sysconf(_SC_PAGE_SIZE);
@@ -124,21 +140,17 @@ void runSimStage(const SimulationSetup& setup, const SimStageOptions& options,
         done = 1;
     }
     ctx.report().progress("sim", done, ctx.lastFrame);
+    const int resumedAt = done;
+    const int64_t stepsBefore = sim.stepCount();
     for (int frame = done + 1; frame <= ctx.lastFrame; ++frame) {
         sim.advanceFrame(frame, ctx.report());
         writeFrame(sim, frame, options, ctx, stats);
         ctx.report().progress("sim", frame, ctx.lastFrame);
     }
-    if (setup.simulation.adaptive && ctx.lastFrame > 1) {
-        const int64_t fixed = int64_t(ctx.lastFrame - 1) * setup.simulation.substepsPerFrame();
-        const int64_t taken = sim.stepCount();
-        std::ostringstream out;
-        out.precision(3);
-        out << "sim: adaptive time steps: " << taken << " steps where dt = " << setup.simulation.dt
-            << " s would take " << fixed << " (" << 100.0 * double(fixed - taken) / double(fixed)
-            << "% saved, mean step " << (double(ctx.lastFrame - 1) / setup.simulation.fps) / double(taken)
-            << " s)";
-        ctx.report().info(out.str());
+    if (setup.simulation.adaptive && ctx.lastFrame > resumedAt) {
+        ctx.report().info(adaptiveSummary(sim.stepCount() - stepsBefore,
+                                          double(ctx.lastFrame - resumedAt) / setup.simulation.fps,
+                                          sim.shortestStep()));
     }
 }
 

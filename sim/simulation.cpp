@@ -168,6 +168,8 @@ long Simulation::stepTo(double frameEnd, int64_t steps, int refine, int64_t& tak
             }
             dt = left / count;
             last = count == 1;
+            // A frame's last step may be cut short to land on the instant: not a bound.
+            if (!last) mShortestStep = std::min(mShortestStep, dt);
         }
         step(dt);
         ++taken;

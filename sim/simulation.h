@@ -5,6 +5,7 @@
 // scene asks for it (on_explosion = "substep").
 
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -68,6 +69,9 @@ public:
     Globules& globules() { return mGlobules; }
     double time() const { return mTime; }
     int64_t stepCount() const { return mSteps; }
+    /// The shortest adaptive step this object has taken (not kept across a resume), s;
+    /// infinity before the first.
+    double shortestStep() const { return mShortestStep; }
     /// Globules the emitters will have produced by the end (for memory estimates).
     std::size_t plannedCount() const;
     /// The same, from the settings alone, before any emitter places a globule (points
@@ -112,6 +116,7 @@ private:
     int32_t mNextId = 0;
     double mTime = 0;
     int64_t mSteps = 0;
+    double mShortestStep = std::numeric_limits<double>::infinity();
 };
 
 }  // namespace globular
