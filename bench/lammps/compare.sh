@@ -30,7 +30,9 @@
 # Environment: LAMMPS_CUTOFF (default 3) to run LAMMPS with another pair cutoff (2 = the
 # radial window only, LAMMPS's cheapest honest setting); TABLE_POINTS (default 4000);
 # KEEP=DIR keeps the workload, inputs and logs in DIR; REPEAT=R runs every column R times
-# and keeps the best (on a shared, busy machine); CHECK=0 skips the force check.
+# and keeps the best (on a shared, busy machine); CHECK=0 skips the force check;
+# WHOLE=1 also times both whole processes (start to exit: reading the workload, setup,
+# the steps), LAMMPS on 2 ranks against globular on 2 threads, in REPEAT alternating pairs.
 set -euo pipefail
 
 # PRIORITY=1 (root, Linux): rerun in a scheduler autogroup of its own at nice -20, so that
@@ -168,3 +170,15 @@ echo "# (C_d = 1.5) and evaluates each pair from both sides; LAMMPS here the rad
 echo "# LAMMPS loop: np1 ${l1loop} s (${l1pct}% CPU), np2 ${l2loop} s (${l2pct}% CPU per rank);" \
     "np1 $(awk '/^Per MPI rank memory/ {print $(NF - 1) " MB"}' "$work/log.np1") (LAMMPS's estimate)," \
     "$(awk '/^Ave neighs\/atom/ {print $NF}' "$work/log.np1") neighbours per atom (half list)"
+
+if [[ ${WHOLE:-0} == 1 ]]; then
+    # Whole processes, paired: each pair runs LAMMPS then globular back to back.
+    seconds() { local t; t=$(mktemp); /usr/bin/time -f %e -o "$t" "$@" >/dev/null; cat "$t"; rm -f "$t"; }
+    ratios=()
+    for ((rep = 0; rep < ${REPEAT:-1}; ++rep)); do
+        lw=$(cd "$work" && seconds "${mpi[@]}" -np 2 lmp -nocite -in in.globular -log "$work/log.whole" -screen none)
+        gw=$(seconds "$build/bench/sim_steps" --ply "$work/globules.ply" --steps "$steps" --threads 2)
+        ratios+=("$(awk -v g="$gw" -v l="$lw" 'BEGIN { printf "%.3f", g / l }')")
+        echo "# whole process, pair $((rep + 1)): LAMMPS np2 $lw s, globular 2 threads $gw s: globular takes ${ratios[-1]} of LAMMPS's time ($(awk -v g="$gw" -v l="$lw" 'BEGIN { printf "%.2f", l / g }')x as fast)"
+    done
+fi
