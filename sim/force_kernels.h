@@ -15,19 +15,10 @@
 
 namespace globular {
 
-/// Globules [first, last) in grid order that share one grid cell.
-struct CellGroupRange {
-    uint32_t first = 0, last = 0;
-};
-
 /// What the grid force loop keeps between steps.
 struct NeighborWorkspace {
     NeighborGrid grid;
     float largestRadius = 0;  ///< of the globules the grid was last built over
-    /// The order in which the loop takes the cell groups (force_kernels.cpp): entry
-    /// chunk * 9 + colour lists, in grid order, the groups of that chunk of buckets
-    /// whose row of cells has that colour. Kept for its memory.
-    std::vector<std::vector<CellGroupRange>> schedule;
 };
 
 /// One path's force loops (forces.h: pairForcesSorting and pairForcesThermal).

@@ -69,10 +69,6 @@ public:
     float cellSize() const { return mCellSize; }
     /// Point indices in grid order: a cache-friendly traversal order.
     const std::vector<uint32_t>& sortedOrder() const { return mSorted; }
-    /// Where each bucket's points begin in sortedOrder(), and one past the last bucket's
-    /// end (buckets + 1 entries). A row of cells lies in exactly one bucket; a bucket may
-    /// hold several rows (hash collisions), their cells interleaved by x.
-    const std::vector<uint32_t>& bucketStarts() const { return mBucketStart; }
 
 private:
     uint32_t rowBucket(int32_t cy, int32_t cz) const;

@@ -29,25 +29,19 @@ struct GlobuleArrays {
 };
 
 /// One globule's neighbours within reach: P = x_i - x_j, V.P with V = v_i - v_j (all the
-/// drag needs of the velocities: one array instead of three) and r_i + r_j, and each
-/// neighbour's index j, to which scatterBatch hands the opposite force.
+/// drag needs of the velocities: one array instead of three) and r_i + r_j.
 struct NeighborBatch {
     static constexpr uint32_t kPadding = 16;  ///< vector stores write up to 16 past count
     std::vector<float> dx, dy, dz, vDotP, radiusSum;
-    std::vector<uint32_t> index;  ///< j, in grid order
     float uniformSum = 0;  ///< r_i + r_j of every neighbour, or 0: see radiusSum
     uint32_t count = 0;
     std::vector<float> temperature;  ///< thermal scenes where pairs melt (NeighborHeat)
-    std::vector<float> flow;         ///< thermal scenes: w (T_j - T_i) of each pair
-    /// Out of sumBatch: the scale of each pair's force, f_i = scale P (eq. 2).
-    std::vector<float> scale;
 
     /// Room for @p candidates entries.
     void reserve(std::size_t candidates) {
-        for (auto* a : {&dx, &dy, &dz, &vDotP, &radiusSum, &temperature, &flow, &scale}) {
+        for (auto* a : {&dx, &dy, &dz, &vDotP, &radiusSum, &temperature}) {
             if (a->size() < candidates + kPadding) a->resize(candidates + kPadding);
         }
-        if (index.size() < candidates + kPadding) index.resize(candidates + kPadding);
     }
 };
 
@@ -58,7 +52,6 @@ struct NeighborBatch {
 struct GroupCandidates {
     static constexpr uint32_t kPadding = 16;  ///< vector stores write up to 16 past count
     std::vector<float> x, y, z, vx, vy, vz, radius;
-    std::vector<uint32_t> index;  ///< j, ascending (the runs come in grid order)
     bool uniformRadius = false;  ///< all globules share one radius: `radius` is not kept
     uint32_t count = 0;
     std::vector<float> temperature;  ///< thermal scenes (GlobuleArrays::temperature)
@@ -69,24 +62,10 @@ struct GroupCandidates {
         for (auto* a : {&x, &y, &z, &vx, &vy, &vz, &radius, &temperature}) {
             a->resize(candidates + kPadding);
         }
-        index.resize(candidates + kPadding);
-    }
-
-    /// The first candidate whose index is above @p i, searching from @p from: the
-    /// candidates a globule i takes (each pair once, by its lower index).
-    uint32_t after(uint32_t i, uint32_t from) const {
-        while (from < count && index[from] <= i) ++from;
-        return from;
     }
 };
 
 #if defined(__AVX512F__)
-/// j, j + 1, ..., j + 15.
-inline __m512i laneIndices(uint32_t j) {
-    return _mm512_add_epi32(_mm512_set1_epi32(int(j)),
-                            _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
-}
-
 /// Sixteen globules from @p j of @p s: their positions, and which of the first @p left lie
 /// within reach (@p reach2 squared) of the box [@p lo, @p hi].
 struct NearBox {
@@ -151,8 +130,6 @@ inline void collectGroupCandidates(const GlobuleArrays& s, uint32_t begin, uint3
         keep(out.x, x);
         keep(out.y, y);
         keep(out.z, z);
-        _mm512_storeu_si512(out.index.data() + count,
-                            _mm512_maskz_compress_epi32(near, laneIndices(j)));
         keepFrom(out.vx, s.vx);
         keepFrom(out.vy, s.vy);
         keepFrom(out.vz, s.vz);
@@ -175,7 +152,6 @@ inline void collectGroupCandidates(const GlobuleArrays& s, uint32_t begin, uint3
         out.vy[count] = s.vy[j];
         out.vz[count] = s.vz[j];
         out.radius[count] = s.radius[j];
-        out.index[count] = j;
         if (s.temperature) out.temperature[count] = s.temperature[j];
         count += d2 <= reach2 && (!material || material[j] == want);
     }
@@ -212,8 +188,6 @@ inline void collectGroupCandidatesByMaterial(const GlobuleArrays& s, uint32_t be
             keep(c.x, x);
             keep(c.y, y);
             keep(c.z, z);
-            _mm512_storeu_si512(c.index.data() + c.count,
-                                _mm512_maskz_compress_epi32(mine, laneIndices(j)));
             keep(c.vx, vx);
             keep(c.vy, vy);
             keep(c.vz, vz);
@@ -231,9 +205,8 @@ inline void collectGroupCandidatesByMaterial(const GlobuleArrays& s, uint32_t be
 
 /// What collectNeighbors does besides in thermal scenes (thermal_settings.h): it sums the
 /// heat flowing into globule i from each neighbour within reach, k w (T_j - T_i) with
-/// w = 1 - d^2 / (reach^2 (r_i + r_j)^2), while it has the pair at hand, keeps each
-/// pair's w (T_j - T_i) for the neighbour's side (scatterHeat), and keeps what the
-/// blended force needs (thermal_kernel.h).
+/// w = 1 - d^2 / (reach^2 (r_i + r_j)^2), while it has the pair at hand, and keeps what
+/// the blended force needs (thermal_kernel.h).
 struct NeighborHeat {
     float temperature = 0;          ///< T_i
     float conductance = 0;          ///< k of the pair
@@ -241,31 +214,27 @@ struct NeighborHeat {
     float heat = 0;                 ///< out: the sum
 };
 
-/// Appends to @p out the candidates j of @p c from the @p from th on with
-/// 0 < |x_i - x_j| < reach (r_i + r_j), reach = PairForce::cutoff(1), for globule i at
-/// (x, y, z) with velocity v and radius r. Globule i itself (and any globule at exactly
-/// its position, whose force is zero) is left out. @p out has room for them.
-/// <Thermal>: also what @p thermal asks for.
+/// Appends to @p out the candidates j of @p c with 0 < |x_i - x_j| < reach (r_i + r_j),
+/// reach = PairForce::cutoff(1), for globule i at (x, y, z) with velocity v and radius r.
+/// Globule i itself (and any globule at exactly its position, whose force is zero) is
+/// left out. @p out has room for them. <Thermal>: also what @p thermal asks for.
 template <bool Thermal = false>
-inline void collectNeighbors(const GroupCandidates& c, uint32_t from, float x, float y, float z,
-                             float vx, float vy, float vz, float r, float reach2,
-                             NeighborBatch& out, NeighborHeat* thermal = nullptr) {
+inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z, float vx,
+                             float vy, float vz, float r, float reach2, NeighborBatch& out,
+                             NeighborHeat* thermal = nullptr) {
     uint32_t count = out.count;
     float *bx = out.dx.data(), *by = out.dy.data(), *bz = out.dz.data();
     float* bvp = out.vDotP.data();
     float* bsum = out.radiusSum.data();
-    uint32_t* bj = out.index.data();
     const uint32_t end = c.count;
     // Locals, not members: the vector stores below may alias anything, so members would
     // be reloaded on every pass.
     const float *cx = c.x.data(), *cy = c.y.data(), *cz = c.z.data();
     const float *cvx = c.vx.data(), *cvy = c.vy.data(), *cvz = c.vz.data();
     const float *cr = c.radius.data(), *ct = c.temperature.data();
-    const uint32_t* cj = c.index.data();
     const bool uniformRadius = c.uniformRadius;
     const bool keepTemperature = Thermal && thermal->keepTemperature;
     float* bt = out.temperature.data();
-    float* bflow = out.flow.data();
 #if defined(__AVX512F__)
     const __m512 px = _mm512_set1_ps(x), py = _mm512_set1_ps(y), pz = _mm512_set1_ps(z);
     const __m512 pvx = _mm512_set1_ps(vx), pvy = _mm512_set1_ps(vy), pvz = _mm512_set1_ps(vz);
@@ -276,7 +245,7 @@ inline void collectNeighbors(const GroupCandidates& c, uint32_t from, float x, f
         ti = _mm512_set1_ps(thermal->temperature);
         uniformInvLimit = _mm512_set1_ps(1.0f / ((r + r) * (r + r) * reach2));  // 1 / limit
     }
-    for (uint32_t j = from; j < end; j += 16) {
+    for (uint32_t j = 0; j < end; j += 16) {
         // The padding past count is readable: plain loads, and a masked test.
         const uint32_t left = end - j;
         const __mmask16 live = firstLanes(left);
@@ -296,8 +265,6 @@ inline void collectNeighbors(const GroupCandidates& c, uint32_t from, float x, f
         keep(bx, dx);
         keep(by, dy);
         keep(bz, dz);
-        _mm512_storeu_si512(bj + count,
-                            _mm512_maskz_compress_epi32(near, _mm512_loadu_si512(cj + j)));
         const __m512 dvx = _mm512_sub_ps(pvx, _mm512_loadu_ps(cvx + j));
         const __m512 dvy = _mm512_sub_ps(pvy, _mm512_loadu_ps(cvy + j));
         const __m512 dvz = _mm512_sub_ps(pvz, _mm512_loadu_ps(cvz + j));
@@ -309,23 +276,20 @@ inline void collectNeighbors(const GroupCandidates& c, uint32_t from, float x, f
             // Division, not an estimate: w_ij must equal w_ji bit for bit.
             const __m512 invLimit = uniformRadius ? uniformInvLimit : _mm512_div_ps(one, limit);
             const __m512 w = _mm512_fnmadd_ps(d2, invLimit, one);
-            const __m512 flow = _mm512_mul_ps(w, _mm512_sub_ps(tj, ti));  // k after the sum
-            keep(bflow, flow);
-            heat = _mm512_mask_add_ps(heat, near, heat, flow);
+            heat = _mm512_mask3_fmadd_ps(w, _mm512_sub_ps(tj, ti), heat, near);  // k after the sum
         }
         count += uint32_t(__builtin_popcount(near));
     }
     if constexpr (Thermal) thermal->heat = thermal->conductance * _mm512_reduce_add_ps(heat);
 #else
     float heat = 0;
-    for (uint32_t j = from; j < end; ++j) {
+    for (uint32_t j = 0; j < end; ++j) {
         const float dx = x - cx[j], dy = y - cy[j], dz = z - cz[j];
         const float d2 = dx * dx + dy * dy + dz * dz;
         const float sum = r + (uniformRadius ? r : cr[j]);
         bx[count] = dx;
         by[count] = dy;
         bz[count] = dz;
-        bj[count] = cj[j];
         bvp[count] = (vx - cvx[j]) * dx + (vy - cvy[j]) * dy + (vz - cvz[j]) * dz;
         bsum[count] = sum;
         const float limit = sum * sum * reach2;
@@ -333,9 +297,7 @@ inline void collectNeighbors(const GroupCandidates& c, uint32_t from, float x, f
         if constexpr (Thermal) {
             const float tj = ct[j];
             if (keepTemperature) bt[count] = tj;
-            const float flow = (1.0f - d2 * (1.0f / limit)) * (tj - thermal->temperature);
-            bflow[count] = flow;
-            if (near) heat += flow;
+            if (near) heat += (1.0f - d2 * (1.0f / limit)) * (tj - thermal->temperature);
         }
         count += near;
     }
@@ -343,45 +305,6 @@ inline void collectNeighbors(const GroupCandidates& c, uint32_t from, float x, f
 #endif
     out.count = count;
     out.uniformSum = c.uniformRadius ? r + r : 0.0f;
-}
-
-/// Hands each neighbour j in @p batch the opposite of the force sumBatch gave globule i:
-/// f_j -= scale P (Newton's third law). The j of one batch are distinct.
-inline void scatterBatch(const NeighborBatch& batch, float* fx, float* fy, float* fz) {
-    const float *bx = batch.dx.data(), *by = batch.dy.data(), *bz = batch.dz.data();
-    const float* bs = batch.scale.data();
-    const uint32_t* bj = batch.index.data();
-    const uint32_t count = batch.count;
-#if defined(__AVX512F__)
-    for (uint32_t k = 0; k < count; k += 16) {
-        const __mmask16 live = firstLanes(count - k);
-        const __m512i j = _mm512_maskz_loadu_epi32(live, bj + k);
-        const __m512 s = _mm512_maskz_loadu_ps(live, bs + k);
-        const auto give = [&](float* f, const float* d) {
-            const __m512 old = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), live, j, f, 4);
-            const __m512 now = _mm512_fnmadd_ps(s, _mm512_maskz_loadu_ps(live, d + k), old);
-            _mm512_mask_i32scatter_ps(f, live, j, now, 4);
-        };
-        give(fx, bx);
-        give(fy, by);
-        give(fz, bz);
-    }
-#else
-    for (uint32_t k = 0; k < count; ++k) {
-        const uint32_t j = bj[k];
-        fx[j] -= bs[k] * bx[k];
-        fy[j] -= bs[k] * by[k];
-        fz[j] -= bs[k] * bz[k];
-    }
-#endif
-}
-
-/// The heat side of scatterBatch: each neighbour j in @p batch loses what flowed from it
-/// into globule i, k w (T_j - T_i), for a pair of conductance @p conductance.
-inline void scatterHeat(const NeighborBatch& batch, float conductance, float* heat) {
-    const float* bflow = batch.flow.data();
-    const uint32_t* bj = batch.index.data();
-    for (uint32_t k = 0; k < batch.count; ++k) heat[bj[k]] -= conductance * bflow[k];
 }
 
 /// b1/D^M - b2/D^N with integer exponents known at compile time (0 = use pow()).
@@ -443,17 +366,15 @@ inline __m512 pairScale(__m512 d2, __m512 invSum2, __m512 minD2, __m512 b1, __m5
 }
 #endif
 
-/// Adds to (fx, fy, fz) the force of eq. (2) from every neighbour in @p batch, and keeps
-/// each pair's scale in batch.scale (scatterBatch).
+/// Adds to (fx, fy, fz) the force of eq. (2) from every neighbour in @p batch.
 template <int M, int N>
-inline void sumBatch(const PairForce& p, NeighborBatch& batch, float& fx, float& fy,
+inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, float& fy,
                      float& fz) {
     const float invCr2 = 1.0f / (p.cr * p.cr), invCd2 = 1.0f / (p.cd * p.cd);
     const float minFraction2 = kMinDistanceFraction * kMinDistanceFraction;
     const float *bx = batch.dx.data(), *by = batch.dy.data(), *bz = batch.dz.data();
     const float* bvp = batch.vDotP.data();
     const float* bsum = batch.radiusSum.data();
-    float* bscale = batch.scale.data();
     const bool uniform = batch.uniformSum > 0;
     const uint32_t count = batch.count;
 #if defined(__AVX512F__)
@@ -480,7 +401,6 @@ inline void sumBatch(const PairForce& p, NeighborBatch& batch, float& fx, float&
                 const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
                 const __m512 scale = pairScale<M, N>(d2, invSum2, minD2, b1, b2, cr2, cd2,
                                                      _mm512_maskz_loadu_ps(live, bvp + k));
-                _mm512_storeu_ps(bscale + k, scale);
                 ax = _mm512_mask3_fmadd_ps(scale, dx, ax, live);
                 ay = _mm512_mask3_fmadd_ps(scale, dy, ay, live);
                 az = _mm512_mask3_fmadd_ps(scale, dz, az, live);
@@ -511,7 +431,6 @@ inline void sumBatch(const PairForce& p, NeighborBatch& batch, float& fx, float&
         const float vDotP = bvp[k];
         const float scale =
             windowR * radialTerm<M, N>(p, invD, distance) - windowD * vDotP * (invD * invD);
-        bscale[k] = scale;
         ax += scale * dx;
         ay += scale * dy;
         az += scale * dz;

@@ -68,7 +68,7 @@ inline std::pair<float, float> temperatureRange(const float* t, uint32_t count) 
 /// mean temperature. <M, N>: the exponents both phases share, unrolled; <0, 0>: pow()
 /// with blended exponents.
 template <int M, int N>
-inline void sumBlendedBatch(const ThermalPair& pair, float ti, NeighborBatch& batch,
+inline void sumBlendedBatch(const ThermalPair& pair, float ti, const NeighborBatch& batch,
                             float& fx, float& fy, float& fz) {
     const PairForce &solid = pair.solid, &liquid = pair.liquid;
     const float minFraction2 = kMinDistanceFraction * kMinDistanceFraction;
@@ -76,7 +76,6 @@ inline void sumBlendedBatch(const ThermalPair& pair, float ti, NeighborBatch& ba
     const float* bvp = batch.vDotP.data();
     const float* bsum = batch.radiusSum.data();
     const float* bt = batch.temperature.data();
-    float* bscale = batch.scale.data();
     const bool uniform = batch.uniformSum > 0;
     const uint32_t count = batch.count;
 #if defined(__AVX512F__)
@@ -117,7 +116,6 @@ inline void sumBlendedBatch(const ThermalPair& pair, float ti, NeighborBatch& ba
             const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
             const __m512 scale = pairScale<M, N>(d2, invSum2, minD2, b1, b2, cr2, cd2,
                                                  _mm512_maskz_loadu_ps(live, bvp + k));
-            _mm512_storeu_ps(bscale + k, scale);
             ax = _mm512_mask3_fmadd_ps(scale, dx, ax, live);
             ay = _mm512_mask3_fmadd_ps(scale, dy, ay, live);
             az = _mm512_mask3_fmadd_ps(scale, dz, az, live);
@@ -153,7 +151,6 @@ inline void sumBlendedBatch(const ThermalPair& pair, float ti, NeighborBatch& ba
                      b2 * std::pow(distance, -blend(solid.n, liquid.n));
         }
         const float scale = windowR * radial - windowD * bvp[k] * (invD * invD);
-        bscale[k] = scale;
         ax += scale * dx;
         ay += scale * dy;
         az += scale * dz;
