@@ -69,61 +69,74 @@ std::vector<std::size_t> clusterSizes(const Globules& g) {
     for (float r : g.radius) {
         if (std::isfinite(r)) maxRadius = std::max(maxRadius, r);
     }
-    ConcurrentUnionFind sets(n);
-    if (maxRadius > 0) {
-        const float cellSize = 2 * maxRadius;  // covers the largest overlap distance
-        std::vector<uint32_t> member;          // grid point k is globule member[k]
-        member.reserve(n);
-        for (std::size_t i = 0; i < n; ++i) {
-            if (binnable(g, i, cellSize)) member.push_back(uint32_t(i));
-        }
-        const std::size_t m = member.size();
-        std::vector<float> x(m), y(m), z(m), r(m);
-        for (std::size_t k = 0; k < m; ++k) {
-            x[k] = g.px[member[k]];
-            y[k] = g.py[member[k]];
-            z[k] = g.pz[member[k]];
-        }
-        NeighborGrid grid;
-        grid.build(x.data(), y.data(), z.data(), m, cellSize);
-        // Copies in the grid's order: a query's runs are then contiguous ranges of these
-        // arrays, read straight through, and a pair is tested once, from its earlier end.
-        const std::vector<uint32_t>& order = grid.sortedOrder();
-        std::vector<uint32_t> id(m);
-        for (std::size_t s = 0; s < m; ++s) {
-            id[s] = member[order[s]];
-            r[s] = g.radius[id[s]];
-        }
-        for (std::size_t s = 0; s < m; ++s) {  // in place: x, y, z now in grid order
-            x[s] = g.px[id[s]];
-            y[s] = g.py[id[s]];
-            z[s] = g.pz[id[s]];
-        }
-        tbb::parallel_for(
-            tbb::blocked_range<std::size_t>(0, m, 1024),
-            [&](const tbb::blocked_range<std::size_t>& range) {
-                NeighborGrid::RunCursor cursor;
-                std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> runs;
-                for (std::size_t s = range.begin(); s < range.end(); ++s) {
-                    const int count = grid.neighborRuns(x[s], y[s], z[s], cursor, runs);
-                    for (int q = 0; q < count; ++q) {
-                        for (std::size_t l = std::max<std::size_t>(runs[q].first, s + 1);
-                             l < runs[q].second; ++l) {
-                            const float dx = x[l] - x[s], dy = y[l] - y[s], dz = z[l] - z[s];
-                            const float reach = r[s] + r[l];
-                            if (dx * dx + dy * dy + dz * dz < reach * reach) {
-                                sets.unite(id[s], id[l]);
-                            }
+    if (!(maxRadius > 0)) return std::vector<std::size_t>(n, 1);
+    const float cellSize = 2 * maxRadius;  // covers the largest overlap distance
+    std::vector<uint32_t> member;          // grid point k is globule member[k]
+    member.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        if (binnable(g, i, cellSize)) member.push_back(uint32_t(i));
+    }
+    const std::size_t m = member.size();
+    std::vector<float> x(m), y(m), z(m), r(m);
+    for (std::size_t k = 0; k < m; ++k) {
+        x[k] = g.px[member[k]];
+        y[k] = g.py[member[k]];
+        z[k] = g.pz[member[k]];
+    }
+    NeighborGrid grid;
+    grid.build(x.data(), y.data(), z.data(), m, cellSize);
+    // Copies in the grid's order: a query's runs are then contiguous ranges of these
+    // arrays, read straight through, and a pair is tested once, from its earlier end.
+    // The clusters are found over these positions too, so that the union-find's reads
+    // stay as local as the neighbours (sizes do not depend on the labels).
+    const std::vector<uint32_t>& order = grid.sortedOrder();
+    for (std::size_t s = 0; s < m; ++s) {  // in place: x, y, z now in grid order
+        const uint32_t i = member[order[s]];
+        x[s] = g.px[i];
+        y[s] = g.py[i];
+        z[s] = g.pz[i];
+        r[s] = g.radius[i];
+    }
+    ConcurrentUnionFind sets(m);
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, m, 1024),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+            NeighborGrid::RunCursor cursor;
+            std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> runs;
+            constexpr std::size_t kChunk = 64;
+            std::array<uint8_t, kChunk> overlaps;
+            for (std::size_t s = range.begin(); s < range.end(); ++s) {
+                // Most overlapping pairs are already in one cluster: a find on the
+                // partner's side alone tells, and only the rest are united.
+                uint32_t root = sets.find(uint32_t(s));
+                const int count = grid.neighborRuns(x[s], y[s], z[s], cursor, runs);
+                for (int q = 0; q < count; ++q) {
+                    const std::size_t end = runs[q].second;
+                    for (std::size_t l = std::max<std::size_t>(runs[q].first, s + 1); l < end;
+                         l += kChunk) {
+                        const std::size_t chunk = std::min(kChunk, end - l);
+                        for (std::size_t k = 0; k < chunk; ++k) {  // vectorised test
+                            const float dx = x[l + k] - x[s], dy = y[l + k] - y[s],
+                                        dz = z[l + k] - z[s];
+                            const float reach = r[s] + r[l + k];
+                            overlaps[k] = dx * dx + dy * dy + dz * dz < reach * reach;
+                        }
+                        for (std::size_t k = 0; k < chunk; ++k) {
+                            if (!overlaps[k]) continue;
+                            const uint32_t other = sets.find(uint32_t(l + k));
+                            if (other == root) continue;
+                            sets.unite(root, other);
+                            root = sets.find(uint32_t(s));
                         }
                     }
                 }
-            });
-    }
-    std::vector<std::size_t> sizeOfRoot(n, 0);
-    for (std::size_t i = 0; i < n; ++i) ++sizeOfRoot[sets.find(uint32_t(i))];
-    std::vector<std::size_t> sizes;
-    for (std::size_t s : sizeOfRoot) {
-        if (s > 0) sizes.push_back(s);
+            }
+        });
+    std::vector<std::size_t> sizeOfRoot(m, 0);
+    for (std::size_t s = 0; s < m; ++s) ++sizeOfRoot[sets.find(uint32_t(s))];
+    std::vector<std::size_t> sizes(n - m, 1);  // the unbinnable stay clusters of one
+    for (std::size_t size : sizeOfRoot) {
+        if (size > 0) sizes.push_back(size);
     }
     return sizes;
 }
