@@ -10,7 +10,8 @@
 #   3. memory per globule: peak RSS of sim_steps on 1e6 globules minus that on 1e3
 #   4. LAMMPS on the identical workload (bench/lammps/compare.sh) at 1e5 and 1e6
 #   5. surfacing against vdb_tool (bench/surface_vs_vdb_tool.sh), if present
-#   6. rendering (render_bench), if present
+#   6. rendering (render_bench), if present; the dense pile (BM_SimulationStepDense) and
+#      the per-frame statistics' share of a frame (frame_stats_bench), issue 18
 #   7. end to end: the 240-frame pour of 1e5 globules, all three stages (bench/end_to_end.sh)
 # A part whose program or peer is missing is skipped with a note. Every part runs under
 # `timeout`. Timings are wall clock; where other work shares the machine, the CPU-time
@@ -36,7 +37,7 @@ echo "# machine: $(lscpu | awk -F: '/^Model name/ {gsub(/^ +/, "", $2); print $2
 echo "# load average at start: $(cut -d' ' -f1-3 /proc/loadavg); priority: $([[ -n ${GLOBULAR_BENCH_PRIORITY:-} ]] && echo "own autogroup, nice -20" || echo "normal")"
 
 # Build what is there; a target that does not exist or fails is reported, not fatal.
-for target in globular sim_bench make_workload sim_steps globular_surface_compare render_bench; do
+for target in globular sim_bench make_workload sim_steps globular_surface_compare render_bench frame_stats_bench; do
     if ninja -C "$build" -t targets all 2>/dev/null | grep -q "^$target:"; then
         ninja -C "$build" "$target" >/dev/null 2>&1 || echo "# warning: building $target failed"
     fi
@@ -139,6 +140,17 @@ if have render_bench; then
     timeout 300 "$build/bench/render_bench" 2>/dev/null | sed 's/^/  /' || echo "  (render_bench stopped: $?)"
 else
     note "render_bench not built (target not present yet)"
+fi
+if have sim_bench; then
+    echo "  dense pile (~440 neighbours), 1e5 globules:"
+    timeout 300 "$build/bench/sim_bench" --benchmark_filter='BM_SimulationStepDense' 2>/dev/null |
+        grep '^BM_' | sed 's/^/  /' || echo "  (sim_bench stopped: $?)"
+fi
+if have frame_stats_bench; then
+    stat_counts=(100000 1000000)
+    ((quick)) && stat_counts=(10000)
+    timeout 300 "$build/bench/frame_stats_bench" "${stat_counts[@]}" | sed 's/^/  /' ||
+        echo "  (frame_stats_bench stopped: $?)"
 fi
 
 # ---------------------------------------------------------------------------------------
