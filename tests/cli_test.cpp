@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -125,6 +126,36 @@ TEST_F(Cli, SetOverridesTheFrameCount) {
     EXPECT_EQ(lines(readFile(out / "stats.csv")).size(), 4u);
     NullReporter quiet;
     EXPECT_EQ(loadScene(out / "scene.toml", {}, quiet).simulation.frames, 3);
+}
+
+TEST_F(Cli, AdaptiveRunSummarisesItsSteps) {
+    const fs::path scene = writeScene("small.toml", kSmallScene);
+    const std::string common = "run " + quote(scene.string()) + " --stages sim --set "
+                               "simulation.integrator=semi_implicit_euler --set simulation.dt=0.01";
+    const RunResult fixed = run(common + " --out " + quote((mDir / "fixed").string()));
+    ASSERT_EQ(fixed.status, 0) << fixed.err;
+    EXPECT_EQ(fixed.err.find("adaptive time steps"), std::string::npos) << fixed.err;
+
+    const RunResult r = run(common + " --set simulation.adaptive=true --out " +
+                            quote((mDir / "adaptive").string()));
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string key = "sim: adaptive time steps: ";
+    const std::size_t at = r.err.find(key);
+    ASSERT_NE(at, std::string::npos) << r.err;
+    long steps = 0;
+    double mean = 0, shortest = 0, fixedSteps = 0;
+    ASSERT_EQ(std::sscanf(r.err.c_str() + at + key.size(),
+                          "%ld steps (mean %lf s, shortest %lf s); a fixed step as short as the "
+                          "shortest would take %lf",
+                          &steps, &mean, &shortest, &fixedSteps),
+              4)
+        << r.err;
+    // Four frames of 1/25 s, each ending on its instant: at least one step each, none
+    // longer than the dt cap, and the mean is the time over the steps.
+    EXPECT_GE(steps, 4 * 4);  // 0.04 s frames in steps of at most 0.01 s
+    EXPECT_LE(shortest, 0.01 + 1e-9);
+    EXPECT_NEAR(mean, 0.16 / double(steps), 0.01 * mean);
+    EXPECT_GE(fixedSteps, double(steps));
 }
 
 TEST_F(Cli, BadSceneExitsTwoAndWritesNothing) {

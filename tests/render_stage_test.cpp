@@ -112,6 +112,25 @@ TEST(RenderStage, WritesAPngForEachRequestedFrameOnly) {
     EXPECT_FALSE(fs::exists(dir / "movie.mp4"));
 }
 
+TEST(RenderStage, AFrameThatCannotBeWrittenStopsTheStageNamingItAndKeepsTheOthers) {
+    // Frames are written on a worker while the next one draws: the failure must still
+    // surface, name its file, and leave the frames before it whole.
+    const fs::path dir = freshDir("unwritable");
+    writeCaches(dir, 1, 5);
+    const fs::path blocked = framePngPath(dir, 3);
+    fs::create_directories(blocked / "occupied");  // a non-empty folder where the PNG goes
+    RecordingReporter reporter("render");
+    try {
+        runRenderStage(smallJob(), context(dir, 2, 5, reporter));
+        FAIL() << "frame 3 cannot be written";
+    } catch (const IoError& e) {
+        EXPECT_NE(std::string(e.what()).find("frame.0003.png"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(readPng(framePngPath(dir, 2)).width, 64);
+    EXPECT_TRUE(fs::is_directory(blocked));
+    EXPECT_FALSE(fs::exists(framePngPath(dir, 5)));
+}
+
 TEST(RenderStage, FramesAreTheRenderersWithTheGivenCamera) {
     const fs::path dir = freshDir("camera");
     writeCaches(dir, 1, 2);
