@@ -136,7 +136,6 @@ struct Renderer::Impl {
     std::optional<detail::OcclusionPass> occlusion;
     LinearFrame frame;
     bool culling = true;
-    bool readPasses = true;  // false: a later sub-frame, whose passes are not kept
     GlBackend backend = GlBackend::OSMesa;  // its GL objects live in this back end's context
 
     Impl(int w, int h, int n, int shadowSize, bool passes)
@@ -244,14 +243,13 @@ struct Renderer::Impl {
     }
 
     /// Draws the frame of @p s as the average of its sub-frames (sub_frames.h) into
-    /// `frame`. @p drawSub(setup, seconds) draws one sub-frame into `frame` with the
-    /// content moved on by @p seconds.
+    /// `frame`. @p drawSub(setup, seconds, passes) draws one sub-frame into `frame` with
+    /// the content moved on by @p seconds, reading the passes back when @p passes.
     template <typename DrawSub>
     void accumulate(const FrameSetup& s, DrawSub&& drawSub) {
         const std::vector<SubFrame> subs = subFrames(s.render, s.frameSeconds);
-        readPasses = true;
         if (subs.size() == 1) {
-            drawSub(s, subs.front().seconds);
+            drawSub(s, subs.front().seconds, true);
         } else {
             LinearFrame sum;
             const double tanHalf = std::tan(s.camera.fov * std::numbers::pi / 360.0);
@@ -259,8 +257,7 @@ struct Renderer::Impl {
             for (std::size_t k = 0; k < subs.size(); ++k) {
                 FrameSetup sub = s;
                 sub.camera = throughLens(s.camera, subs[k]);
-                readPasses = k == 0;  // the passes come from the first sub-frame alone
-                drawSub(sub, subs[k].seconds);
+                drawSub(sub, subs[k].seconds, k == 0);
                 const PixelShift shift = lensShift(s.camera, subs[k], s.render, focalX, focalY);
                 if (k == 0) {
                     sum = frame;  // the passes come from the first sub-frame
@@ -277,14 +274,14 @@ struct Renderer::Impl {
             const float weight = 1.0f / float(subs.size());
             for (float& v : sum.rgba) v *= weight;
             frame = std::move(sum);
-            readPasses = true;
         }
     }
 
     /// Draws one (sub-)frame into `frame`: @p content has prepare(f), shadow(f) and
-    /// draw(f) members.
+    /// draw(f) members. Without @p passes only the colour is read back (a later sub-frame:
+    /// `frame` keeps the first one's passes).
     template <typename Content>
-    void draw(const FrameSetup& s, const Bounds3& frameBox, Content&& content) {
+    void draw(const FrameSetup& s, const Bounds3& frameBox, Content&& content, bool passes) {
         const Bounds3 box = withGround(s.content.empty ? frameBox : s.content, s.groundHeight);
         const detail::GroundLook look = groundLook(s, box);
         FrameUniforms f = uniforms(s, box, look.fadeEnd);
@@ -328,7 +325,7 @@ struct Renderer::Impl {
         if (s.render.ground) ground.draw(f, look);
         occlude(f, s, box);
         if (isLiquid(content)) content.draw(f);
-        target.read(frame, f.frameSeconds > 0, readPasses);
+        target.read(frame, f.frameSeconds > 0, passes);
         gl::checkErrors("drawing a frame");
     }
 
@@ -407,12 +404,12 @@ void Renderer::renderSpheres(const Globules& globules, const FrameSetup& setup) 
         }
     };
     const detail::SpherePass::Value value = sphereValue(globules, s.render.colorBy);
-    im.accumulate(s, [&](const FrameSetup& sub, double seconds) {
+    im.accumulate(s, [&](const FrameSetup& sub, double seconds, bool passes) {
         if (seconds == 0) {
-            im.draw(sub, own.box, Content{*im.spheres, im.target, globules, value});
+            im.draw(sub, own.box, Content{*im.spheres, im.target, globules, value}, passes);
         } else {
             const Globules moved = movedBy(globules, seconds);
-            im.draw(sub, own.box, Content{*im.spheres, im.target, moved, value});
+            im.draw(sub, own.box, Content{*im.spheres, im.target, moved, value}, passes);
         }
     });
 }
@@ -446,9 +443,9 @@ void Renderer::renderMesh(const MeshView& mesh, const FrameSetup& setup) {
         }
     };
     std::vector<float> moved;  // the sub-frame's positions, when the mesh has velocities
-    im.accumulate(s, [&](const FrameSetup& sub, double seconds) {
+    im.accumulate(s, [&](const FrameSetup& sub, double seconds, bool passes) {
         const MeshView view = movedBy(mesh, seconds, moved);
-        im.draw(sub, own.box, Content{*im.mesh, view});
+        im.draw(sub, own.box, Content{*im.mesh, view}, passes);
     });
 }
 
@@ -531,13 +528,13 @@ void Renderer::Impl::drawFluid(const Globules& globules, const FrameSetup& setup
     if (!opaque.empty() && !spheres) spheres.emplace(samples);
     const detail::SpherePass::Value value = sphereValue(opaque, s.render.colorBy);
     if (spheres) spheres->setCulling(culling);
-    accumulate(s, [&](const FrameSetup& sub, double seconds) {
+    accumulate(s, [&](const FrameSetup& sub, double seconds, bool passes) {
         if (seconds == 0) {
-            draw(sub, own.box, Content{*this, globules, opaque, look, value});
+            draw(sub, own.box, Content{*this, globules, opaque, look, value}, passes);
         } else {
             const Globules moved = movedBy(globules, seconds);
             const Globules movedOpaque = movedBy(opaque, seconds);
-            draw(sub, own.box, Content{*this, moved, movedOpaque, look, value});
+            draw(sub, own.box, Content{*this, moved, movedOpaque, look, value}, passes);
         }
     });
 }
@@ -559,10 +556,10 @@ void Renderer::Impl::drawLiquidMesh(const MeshView& mesh, const FrameSetup& setu
         void draw(const FrameUniforms& f) { pass.draw(f, look, optics); }
     };
     std::vector<float> moved;  // the sub-frame's positions, when the mesh has velocities
-    accumulate(s, [&](const FrameSetup& sub, double seconds) {
+    accumulate(s, [&](const FrameSetup& sub, double seconds, bool passes) {
         const MeshView view = movedBy(mesh, seconds, moved);
         draw(sub, own.box,
-             Content{*liquidMesh, view, liquidLook(s), opticsOf(s.materialOptics, 0)});
+             Content{*liquidMesh, view, liquidLook(s), opticsOf(s.materialOptics, 0)}, passes);
     });
 }
 

@@ -65,8 +65,7 @@ GlobuleBins::GlobuleBins(const Globules& g, double voxelSize, double influence) 
         if (r <= 0) continue;
         mInfluence[i] = float(r);
         maxInfluence = std::max(maxInfluence, float(r));
-        keys[i] = pack(int64_t(std::floor(x)) >> kBlockLog2, int64_t(std::floor(y)) >> kBlockLog2,
-                       int64_t(std::floor(z)) >> kBlockLog2);
+        keys[i] = blockKeyAt(x, y, z);
         mSorted.push_back(uint32_t(i));
     }
     mReach = int(std::ceil(maxInfluence / kBlockDim));

@@ -13,6 +13,7 @@
 // (i, j, k) * voxelSize, and block b holds voxels 8b .. 8b + 7 along each axis.
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -85,6 +86,11 @@ class GlobuleBins {
     std::size_t binnedCount() const { return mSorted.size(); }
 
     static uint64_t pack(int64_t bx, int64_t by, int64_t bz);
+    /// The packed key of the block holding index-space point (@p x, @p y, @p z).
+    static uint64_t blockKeyAt(double x, double y, double z) {
+        return pack(int64_t(std::floor(x)) >> kBlockLog2, int64_t(std::floor(y)) >> kBlockLog2,
+                    int64_t(std::floor(z)) >> kBlockLog2);
+    }
     static std::array<int64_t, 3> unpack(uint64_t key);
 
   private:

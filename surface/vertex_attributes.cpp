@@ -58,6 +58,47 @@ void gather(const std::vector<Candidate>& candidates, const MetaballKernel& kern
     }
 }
 
+/// A vertex's attributes, written into per-vertex arrays: the kernel-weighted means of
+/// the globules that reach it, sum(w x) / sum(w), and the material of most weight.
+struct VertexMeans {
+    const Globules& globules;
+    CarriedAttributes which;
+    std::vector<float> velocity[3], temperature, material;
+
+    VertexMeans(const Globules& g, CarriedAttributes w, std::size_t vertices)
+        : globules(g), which(w) {
+        for (auto& component : velocity) component.resize(which.velocity ? vertices : 0);
+        temperature.resize(which.temperature ? vertices : 0);
+        material.resize(which.material ? vertices : 0);
+    }
+
+    /// @p near: the globules reaching vertex @p v with their weights; @p perMaterial:
+    /// scratch, one entry per material.
+    void set(std::size_t v, const std::vector<Weighted>& near, std::vector<double>& perMaterial) {
+        double sum = 0, weighted[3] = {0, 0, 0}, warmth = 0;
+        for (const Weighted& g : near) {  // one pass over the neighbours
+            const double w = g.weight;
+            sum += w;
+            if (which.velocity) {
+                weighted[0] += w * globules.vx[g.globule];
+                weighted[1] += w * globules.vy[g.globule];
+                weighted[2] += w * globules.vz[g.globule];
+            }
+            if (which.temperature) warmth += w * globules.temperature[g.globule];
+        }
+        if (which.velocity) {
+            for (int a = 0; a < 3; ++a) velocity[a][v] = sum > 0 ? float(weighted[a] / sum) : 0.0f;
+        }
+        if (which.temperature) temperature[v] = sum > 0 ? float(warmth / sum) : 0.0f;
+        if (which.material) {
+            std::fill(perMaterial.begin(), perMaterial.end(), 0.0);
+            for (const Weighted& g : near) perMaterial[globules.materialOf(g.globule)] += g.weight;
+            material[v] = float(std::max_element(perMaterial.begin(), perMaterial.end()) -
+                                perMaterial.begin());
+        }
+    }
+};
+
 }  // namespace
 
 CarriedAttributes attributesOf(const Globules& globules, bool severalMaterials) {
@@ -82,10 +123,7 @@ void carryGlobuleAttributes(TriangleMesh& mesh, const Globules& globules,
                             double voxelSize, CarriedAttributes which) {
     if (!which.any()) return;
     const std::size_t n = mesh.vertexCount();
-    std::vector<float> velocity[3];
-    for (auto& component : velocity) component.resize(which.velocity ? n : 0);
-    std::vector<float> temperature(which.temperature ? n : 0);
-    std::vector<float> material(which.material ? n : 0);
+    VertexMeans means(globules, which, n);
     const int materials = globules.material.empty()
                               ? 1
                               : 1 + *std::max_element(globules.material.begin(),
@@ -94,14 +132,12 @@ void carryGlobuleAttributes(TriangleMesh& mesh, const Globules& globules,
 
     // Vertices grouped by the block they lie in (then by index: a total order, so the
     // parallel sort is deterministic); each block looks its candidate globules up once.
-    constexpr int kShift = GlobuleBins::kBlockLog2;
     std::vector<std::pair<uint64_t, uint32_t>> byBlock(n);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](auto range) {
         for (std::size_t v = range.begin(); v < range.end(); ++v) {
-            byBlock[v] = {GlobuleBins::pack(
-                              int64_t(std::floor(mesh.positions[3 * v] * toIndex)) >> kShift,
-                              int64_t(std::floor(mesh.positions[3 * v + 1] * toIndex)) >> kShift,
-                              int64_t(std::floor(mesh.positions[3 * v + 2] * toIndex)) >> kShift),
+            byBlock[v] = {GlobuleBins::blockKeyAt(mesh.positions[3 * v] * toIndex,
+                                                  mesh.positions[3 * v + 1] * toIndex,
+                                                  mesh.positions[3 * v + 2] * toIndex),
                           uint32_t(v)};
         }
     });
@@ -128,30 +164,7 @@ void carryGlobuleAttributes(TriangleMesh& mesh, const Globules& globules,
                 if (near.empty() && nearest != std::numeric_limits<uint32_t>::max()) {
                     near.push_back({nearest, 1.0f});
                 }
-                // Kernel-weighted means, sum(w x) / sum(w), in one pass over the neighbours.
-                double sum = 0, weighted[3] = {0, 0, 0}, warmth = 0;
-                for (const Weighted& g : near) {
-                    const double w = g.weight;
-                    sum += w;
-                    if (which.velocity) {
-                        weighted[0] += w * globules.vx[g.globule];
-                        weighted[1] += w * globules.vy[g.globule];
-                        weighted[2] += w * globules.vz[g.globule];
-                    }
-                    if (which.temperature) warmth += w * globules.temperature[g.globule];
-                }
-                if (which.velocity) {
-                    for (int a = 0; a < 3; ++a) {
-                        velocity[a][v] = sum > 0 ? float(weighted[a] / sum) : 0.0f;
-                    }
-                }
-                if (which.temperature) temperature[v] = sum > 0 ? float(warmth / sum) : 0.0f;
-                if (which.material) {
-                    std::fill(perMaterial.begin(), perMaterial.end(), 0.0);
-                    for (const Weighted& g : near) perMaterial[globules.materialOf(g.globule)] += g.weight;
-                    material[v] = float(std::max_element(perMaterial.begin(), perMaterial.end()) -
-                                        perMaterial.begin());
-                }
+                means.set(v, near, perMaterial);
             }
         }
     });
@@ -159,15 +172,16 @@ void carryGlobuleAttributes(TriangleMesh& mesh, const Globules& globules,
         const char* names[3] = {"vx", "vy", "vz"};
         for (int a = 0; a < 3; ++a) {
             mesh.attributes.push_back(
-                {names[a], VertexAttribute::Type::Float32, std::move(velocity[a])});
+                {names[a], VertexAttribute::Type::Float32, std::move(means.velocity[a])});
         }
     }
     if (which.temperature) {
         mesh.attributes.push_back(
-            {"temperature", VertexAttribute::Type::Float32, std::move(temperature)});
+            {"temperature", VertexAttribute::Type::Float32, std::move(means.temperature)});
     }
     if (which.material) {
-        mesh.attributes.push_back({"material", VertexAttribute::Type::Int32, std::move(material)});
+        mesh.attributes.push_back(
+            {"material", VertexAttribute::Type::Int32, std::move(means.material)});
     }
 }
 
