@@ -3,6 +3,7 @@
 // environment file's errors, ambient occlusion at contacts.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -27,7 +28,10 @@ constexpr int kSize = 64;
 
 /// A lat-long OpenEXR of one radiance everywhere.
 fs::path uniformEnvironment(float radiance) {
-    const fs::path dir = fs::temp_directory_path() / "globular_lighting_test";
+    // One folder per process: ctest runs these tests in parallel processes, and one
+    // rewriting the file while another reads it made WhiteFurnace fail now and then.
+    const fs::path dir =
+        fs::temp_directory_path() / ("globular_lighting_test_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     const fs::path path = dir / ("uniform_" + std::to_string(radiance) + ".exr");
     const int width = 16, height = 8;
