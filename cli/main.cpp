@@ -11,6 +11,7 @@
 #include "farm_command.h"
 #include "figures_command.h"
 #include "globular_version.h"
+#include "memory_allocator.h"
 #include "run_command.h"
 #include "scene.h"
 
@@ -29,7 +30,8 @@ void printError(const std::string& message) {
 int main(int argc, char** argv) {
     CLI::App app{"globular: viscous fluid, powder and soft solids with globular dynamics "
                  "(Miller & Pearce 1989), from scene file to caches, VDB surfaces and frames"};
-    app.set_version_flag("--version", std::string("globular ") + GLOBULAR_VERSION);
+    app.set_version_flag("--version", std::string("globular ") + GLOBULAR_VERSION +
+                                          "\nmemory: " + globular::memoryAllocator());
     app.require_subcommand(1);
 
     globular::RunOptions run;

@@ -15,7 +15,7 @@ set -euo pipefail
 packages=(
     build-essential cmake ninja-build pkg-config
     libopenvdb-dev libopenvdb-tools libboost-iostreams-dev libblosc-dev
-    libtbb-dev libeigen3-dev
+    libtbb-dev libeigen3-dev libjemalloc-dev
     libosmesa6-dev libegl-dev libegl-mesa0 libpng-dev libopenexr-dev openexr
     libtomlplusplus-dev libcli11-dev
     libgtest-dev libgmock-dev libbenchmark-dev

@@ -51,7 +51,25 @@ using Cli = CliTest;
 TEST_F(Cli, VersionExitsZero) {
     const RunResult r = run("--version");
     EXPECT_EQ(r.status, 0) << r.err;
-    EXPECT_EQ(r.out, "globular " GLOBULAR_TEST_VERSION "\n");
+    const auto version = lines(r.out);
+    ASSERT_EQ(version.size(), 2u) << r.out;
+    EXPECT_EQ(version[0], "globular " GLOBULAR_TEST_VERSION);
+    if (GLOBULAR_TEST_JEMALLOC) {
+        // The build's own configuration: jemalloc on transparent huge pages.
+        EXPECT_TRUE(version[1].starts_with("memory: jemalloc ")) << version[1];
+        EXPECT_TRUE(version[1].ends_with(" (huge pages: always)")) << version[1];
+    } else {
+        EXPECT_EQ(version[1], "memory: the C library's malloc");
+    }
+}
+
+// jemalloc is configured by the executable itself (core/memory_allocator.cpp), and the
+// MALLOC_CONF variable still overrides it, as jemalloc documents.
+TEST_F(Cli, MallocConfOverridesTheBuiltInAllocatorSettings) {
+    if (!GLOBULAR_TEST_JEMALLOC) GTEST_SKIP() << "built without jemalloc (GLOBULAR_JEMALLOC=OFF)";
+    const RunResult r = run("--version", "MALLOC_CONF=thp:never");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("(huge pages: never)"), std::string::npos) << r.out;
 }
 
 TEST_F(Cli, HelpExitsZero) {
