@@ -10,7 +10,6 @@
 #include "atomic_file.h"
 #include "errors.h"
 #include "file_bytes.h"
-#include "isolated_parse.h"
 
 namespace globular {
 
@@ -181,14 +180,13 @@ void checkVdbBytes(const std::string& bytes) {
     }
 }
 
-std::string parseVdbInChild(const fs::path& path, uint64_t maxBytes,
-                            const std::function<std::string()>& parse) {
+std::string parseVdbInChild(const fs::path& path, uint64_t maxBytes, PathParser parse) {
     try {
         checkVdbBytes(readFileBytes(path, maxBytes));
     } catch (const std::exception& e) {
         throw IoError("cannot read " + path.string() + ": " + e.what());
     }
-    return parseInChild(path, parse);
+    return parseInHelperChild(path, parse);
 }
 
 openvdb::GridPtrVecPtr decodeStreamedVdb(const std::string& bytes) {

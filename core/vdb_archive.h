@@ -14,6 +14,8 @@
 #include <functional>
 #include <string>
 
+#include "reader_helper.h"
+
 namespace globular {
 
 /// The bytes of a VDB file holding @p grids and @p fileMetadata, checksum sealed.
@@ -38,10 +40,10 @@ void checkVdbBytes(const std::string& bytes);
 
 /// The first half of reading a VDB file that may be damaged: its bytes are read (at most
 /// @p maxBytes) and checked (checkVdbBytes), then @p parse runs in a child process
-/// (isolated_parse.h) and its answer is returned, for the caller to decode and check.
+/// (isolated_parse.h, forked by the reader helper: reader_helper.h) and its answer is returned, for the caller to decode and check.
 /// @throw IoError "cannot read PATH: ..." for every failure on the way.
 std::string parseVdbInChild(const std::filesystem::path& path, uint64_t maxBytes,
-                            const std::function<std::string()>& parse);
+                            PathParser parse);
 
 /// Grids read back from bytes encoded with seekable = false (what a reader process sends
 /// back to its parent; the bytes come from OpenVDB's own writer).

@@ -369,7 +369,7 @@ void writeGlobuleVdb(const fs::path& path, const Globules& globules, const Cache
 Globules readGlobuleVdb(const fs::path& path, CacheInfo* info) {
     initializeVdb();
     const std::string answer =
-        parseVdbInChild(path, kMaxCacheBytes, [&] { return parseCache(path); });
+        parseVdbInChild(path, kMaxCacheBytes, parseCache);
     try {
         CacheInfo read;
         Globules globules = unpackGlobules(answer, read);

@@ -164,7 +164,7 @@ std::string parseSurfaceFile(const std::filesystem::path& path) {
 SurfaceGrids readSurfaceVdb(const std::filesystem::path& path) {
     openvdb::initialize();
     const std::string answer =
-        parseVdbInChild(path, kMaxSurfaceFileBytes, [&] { return parseSurfaceFile(path); });
+        parseVdbInChild(path, kMaxSurfaceFileBytes, parseSurfaceFile);
     try {
         const auto grids = decodeStreamedVdb(answer);
         SurfaceGrids read;

@@ -331,5 +331,66 @@ TEST(ParseInChild, ExceptionsAndAnswersCrossTheBoundary) {
     EXPECT_EQ(parseInChild("x", [] { return std::string(5 << 20, 'g'); }).size(), 5u << 20);
 }
 
+/// The parent of the process that runs the parse.
+std::string readersParent(const fs::path&) { return std::to_string(::getppid()); }
+
+/// The parent of process @p pid, from /proc.
+pid_t parentOf(pid_t pid) {
+    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+    for (std::string line; std::getline(status, line);) {
+        if (line.rfind("PPid:", 0) == 0) return pid_t(std::stol(line.substr(5)));
+    }
+    return -1;
+}
+
+// The readers of damaged files are forked by one helper (a child of this process), not by
+// this process, whose memory would then fault page by page (reader_helper.h).
+TEST(ReaderHelper, OneHelperForksEveryReader) {
+    const pid_t helper = pid_t(std::stol(parseInHelperChild("x", readersParent)));
+    EXPECT_NE(helper, ::getpid());
+    EXPECT_EQ(parentOf(helper), ::getpid());
+    EXPECT_EQ(parseInHelperChild("y", readersParent), std::to_string(helper));
+}
+
+TEST(ReaderHelper, AnswersAndErrorsAreParseInChilds) {
+    EXPECT_EQ(parseInHelperChild("x", [](const fs::path&) { return std::string("a\0b", 3); }),
+              std::string("a\0b", 3));
+    EXPECT_EQ(parseInHelperChild("x", [](const fs::path&) { return std::string(5 << 20, 'g'); })
+                  .size(),
+              5u << 20);
+    try {
+        parseInHelperChild("x", [](const fs::path&) -> std::string {
+            throw std::runtime_error("bad header");
+        });
+        ADD_FAILURE() << "no error";
+    } catch (const IoError& e) {
+        EXPECT_STREQ(e.what(), "cannot read x: bad header");
+    }
+    try {
+        parseInHelperChild("/data/frame.vdb", [](const fs::path&) -> std::string {
+            std::raise(SIGSEGV);
+            return "";
+        });
+        ADD_FAILURE() << "no error";
+    } catch (const IoError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("cannot read /data/frame.vdb: the file is damaged: its reader", 0), 0u)
+            << e.what();
+    }
+    // The helper survived its reader's crash.
+    EXPECT_EQ(parseInHelperChild("x", [](const fs::path& p) { return p.string(); }), "x");
+}
+
+// A helper that is gone (killed, say) costs nothing but a fork: the next read forks its
+// reader here, the one after starts a new helper.
+TEST(ReaderHelper, AKilledHelperIsBypassedThenReplaced) {
+    const pid_t helper = pid_t(std::stol(parseInHelperChild("x", readersParent)));
+    ASSERT_EQ(::kill(helper, SIGKILL), 0);
+    EXPECT_EQ(parseInHelperChild("x", readersParent), std::to_string(::getpid()));
+    const pid_t next = pid_t(std::stol(parseInHelperChild("x", readersParent)));
+    EXPECT_NE(next, helper);
+    EXPECT_NE(next, ::getpid());
+    EXPECT_EQ(parentOf(next), ::getpid());
+}
+
 }  // namespace
 }  // namespace globular
