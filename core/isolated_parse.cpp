@@ -149,6 +149,12 @@ bool runOnce(const fs::path& path, const std::function<std::string()>& parse,
 
 }  // namespace
 
+double readerSeconds(const fs::path& path) {
+    std::error_code ec;
+    const uint64_t size = fs::file_size(path, ec);
+    return 20.0 + (ec ? 0.0 : double(size) / 10e6);
+}
+
 std::string parseInChild(const fs::path& path, const std::function<std::string()>& parse,
                          ChildLimits limits) {
     const auto fail = [&](const std::string& what) {
@@ -156,7 +162,7 @@ std::string parseInChild(const fs::path& path, const std::function<std::string()
     };
     std::error_code ec;
     const uint64_t size = fs::file_size(path, ec);
-    if (limits.seconds <= 0) limits.seconds = 20.0 + (ec ? 0.0 : double(size) / 10e6);
+    if (limits.seconds <= 0) limits.seconds = readerSeconds(path);
     if (limits.memoryBytes == 0) {
         // Decompressed data may be far larger than the file, but not beyond reason: a
         // damaged size field then fails fast instead of touching gigabytes.

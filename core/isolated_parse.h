@@ -13,10 +13,13 @@
 namespace globular {
 
 struct ChildLimits {
-    double seconds = 0;        ///< wall time; 0 = 20 s plus 1 s per 10 MB of the file
+    double seconds = 0;        ///< wall time; 0 = readerSeconds(path)
     uint64_t memoryBytes = 0;  ///< address space the child may add; 0 = 64 times the
                                ///< file's size (at least 256 MiB, at most half of RAM)
 };
+
+/// The wall-time limit of a reader of @p path: 20 s plus 1 s per 10 MB of the file.
+double readerSeconds(const std::filesystem::path& path);
 
 /// Runs @p parse in a forked child and @return the bytes it returned. The child is a copy
 /// of this process with only the calling thread: @p parse must not use TBB or start

@@ -10,7 +10,7 @@
 // allocates hundreds of thousands of 2 KiB OpenVDB leaves, and on 4 KiB pages every
 // first touch is a page fault (on this project's virtual machines 15 % of the surface
 // step's time went to faults); the force loop's grid-order reads miss the TLB less.
-// Measured: docs/performance.md, "Memory allocator".
+// Measured: docs/performance.md, "Second pass: page faults".
 const char* malloc_conf = "thp:always,metadata_thp:always";
 #endif
 

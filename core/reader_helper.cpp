@@ -98,11 +98,9 @@ public:
         if (mFd < 0) return false;
         const std::string name = path.string();
         const uint64_t header[2] = {uint64_t(reinterpret_cast<uintptr_t>(parse)), name.size()};
-        // The reader's own limits: two tries of 20 s plus 1 s per 10 MB (isolated_parse.h),
-        // and a margin for the helper's forks.
-        std::error_code ec;
-        const uint64_t bytes = fs::file_size(path, ec);
-        const double seconds = 2 * (20.0 + (ec ? 0.0 : double(bytes) / 10e6)) + 10.0;
+        // The reader's own limit, twice (parseInChild retries once), and a margin for the
+        // helper's forks.
+        const double seconds = 2 * readerSeconds(path) + 10.0;
         const auto deadline = std::chrono::steady_clock::now() +
                               std::chrono::milliseconds(int64_t(seconds * 1000));
         uint64_t size = 0;
@@ -134,14 +132,15 @@ private:
             // caller waits on, no terminal input. Ctrl-C is the main process's to handle
             // (it stops cleanly and closes the socket, which ends the helper).
             ::signal(SIGINT, SIG_IGN);
+            // The socket first: where the caller ran with stdin closed, it may be fd 0.
+            constexpr int kSocket = 3;
+            if (::dup2(fds[1], kSocket) < 0) ::_exit(1);
             const int null = ::open("/dev/null", O_RDWR);
             if (null >= 0) {
                 ::dup2(null, STDIN_FILENO);
                 ::dup2(null, STDOUT_FILENO);
                 if (!std::getenv("GLOBULAR_CHILD_STDERR")) ::dup2(null, STDERR_FILENO);
             }
-            constexpr int kSocket = 3;
-            if (::dup2(fds[1], kSocket) < 0) ::_exit(1);
             if (::close_range(kSocket + 1, ~0u, 0) != 0) {
                 for (int fd = kSocket + 1; fd < 4096; ++fd) ::close(fd);
             }
