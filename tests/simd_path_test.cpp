@@ -152,6 +152,46 @@ TEST(SimdPath, EveryPathGivesTheAllPairsForces) {
     }
 }
 
+// Crowded cells (about 160 globules a group) are split into parts with their own
+// candidates (force_kernels.cpp, GroupParts): still every pair within reach, once, and the
+// same bits on one thread as on two, where the ranges cut groups at other places.
+TEST(SimdPath, CrowdedCellsGiveTheAllPairsForcesOnAnyThreadCount) {
+    for (bool twoMaterials : {false, true}) {
+        const Globules cloud = randomCloud(1500, 5.0, 11, twoMaterials);
+        MaterialSettings liquid, solid;
+        solid.preset = "solid";
+        const PairTable table({liquid, solid}, {});
+        Accelerations reference;
+        twoMaterials ? pairForcesAllPairs(cloud, table, reference)
+                     : pairForcesAllPairs(cloud, table(0, 0), reference);
+        for (SimdPath p : kAllPaths) {
+            if (!runs(p)) continue;
+            SCOPED_TRACE(std::string(simdPathName(p)) + (twoMaterials ? ", two materials" : ""));
+            Accelerations byThreads[2];
+            for (std::size_t threads : {1u, 2u}) {
+                tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+                Globules sorted = cloud;
+                NeighborWorkspace workspace;
+                Accelerations grid;
+                twoMaterials ? pairForcesSorting(sorted, table, workspace, grid, p)
+                             : pairForcesSorting(sorted, table(0, 0), workspace, grid, p);
+                Accelerations& inOrder = byThreads[threads - 1];  // back in the cloud's order
+                inOrder.resize(cloud.size());
+                for (std::size_t k = 0; k < sorted.size(); ++k) {
+                    const std::size_t i = std::size_t(sorted.id[k]);
+                    inOrder.x[i] = grid.x[k];
+                    inOrder.y[i] = grid.y[k];
+                    inOrder.z[i] = grid.z[k];
+                }
+            }
+            expectClose(byThreads[0], reference);
+            EXPECT_EQ(byThreads[0].x, byThreads[1].x);
+            EXPECT_EQ(byThreads[0].y, byThreads[1].y);
+            EXPECT_EQ(byThreads[0].z, byThreads[1].z);
+        }
+    }
+}
+
 TEST(SimdPath, SimulationsAgreeAcrossPaths) {
     const SimulationSetup setup = helix(300);
     const Globules scalar = runOn(SimdPath::Scalar, setup, 4);
