@@ -6,6 +6,7 @@
 // resume, through the checkpoint file too.
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <cmath>
 #include <filesystem>
@@ -245,6 +246,34 @@ TEST(Thermal, GridLoopMatchesTheAllPairsReference) {
         checked += exact.heat[i] != 0;
     }
     EXPECT_GT(checked, 500u);
+}
+
+// Crowded cells (about 180 globules a cell group), cut at other places by other thread
+// counts' ranges: the heat and the forces are the same bits.
+TEST(Thermal, CrowdedCellsGiveTheSameBitsOnAnyThreadCount) {
+    MaterialSettings other = wax("b");
+    other.tSolid = 20;
+    other.tLiquid = 90;
+    other.conductivity = 2;
+    for (bool two : {false, true}) {
+        const PairTable table = two ? PairTable({wax("a"), other}, {}) : PairTable({other}, {});
+        const Globules cloud = warmCloud(3000, 9, two);
+        std::vector<Accelerations> byThreads;
+        for (std::size_t threads : {1u, 2u, 3u, 4u}) {
+            tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+            Globules sorted = cloud;
+            NeighborWorkspace workspace;
+            Accelerations forces;
+            pairForcesThermal(sorted, table, workspace, forces);
+            byThreads.push_back(forces);
+        }
+        for (std::size_t t = 1; t < byThreads.size(); ++t) {
+            SCOPED_TRACE(std::to_string(t + 1) + " threads" + (two ? ", two materials" : ""));
+            EXPECT_EQ(byThreads[t].heat, byThreads[0].heat);
+            EXPECT_EQ(byThreads[t].x, byThreads[0].x);
+            EXPECT_EQ(byThreads[t].z, byThreads[0].z);
+        }
+    }
 }
 
 /// Two materials with temperatures, thrown at each other, weightless and off the ground.
