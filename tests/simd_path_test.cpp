@@ -122,67 +122,73 @@ TEST(SimdPath, NamesAndTheEnvironmentVariable) {
     }
 }
 
+namespace {
+
+/// A liquid and a solid: the table the force tests use (the liquid with itself for one
+/// material).
+PairTable liquidAndSolid() {
+    MaterialSettings liquid, solid;
+    solid.preset = "solid";
+    return PairTable({liquid, solid}, {});
+}
+
+/// The all-pairs forces on @p cloud, in its order.
+Accelerations allPairsForces(const Globules& cloud, const PairTable& table, bool twoMaterials) {
+    Accelerations reference;
+    twoMaterials ? pairForcesAllPairs(cloud, table, reference)
+                 : pairForcesAllPairs(cloud, table(0, 0), reference);
+    return reference;
+}
+
+/// The grid loop's forces on @p cloud on @p path, back in the cloud's order.
+Accelerations gridForces(const Globules& cloud, const PairTable& table, bool twoMaterials,
+                         SimdPath path) {
+    Globules sorted = cloud;
+    NeighborWorkspace workspace;
+    Accelerations grid;
+    twoMaterials ? pairForcesSorting(sorted, table, workspace, grid, path)
+                 : pairForcesSorting(sorted, table(0, 0), workspace, grid, path);
+    Accelerations inOrder;
+    inOrder.resize(cloud.size());
+    for (std::size_t k = 0; k < sorted.size(); ++k) {
+        const std::size_t i = std::size_t(sorted.id[k]);
+        inOrder.x[i] = grid.x[k];
+        inOrder.y[i] = grid.y[k];
+        inOrder.z[i] = grid.z[k];
+    }
+    return inOrder;
+}
+
+}  // namespace
+
 TEST(SimdPath, EveryPathGivesTheAllPairsForces) {
+    const PairTable table = liquidAndSolid();
     for (bool twoMaterials : {false, true}) {
         const Globules cloud = randomCloud(800, 9.0, 5, twoMaterials);
-        MaterialSettings liquid, solid;
-        solid.preset = "solid";
-        const PairTable table({liquid, solid}, {});
-        Accelerations reference;
-        twoMaterials ? pairForcesAllPairs(cloud, table, reference)
-                     : pairForcesAllPairs(cloud, table(0, 0), reference);
+        const Accelerations reference = allPairsForces(cloud, table, twoMaterials);
         for (SimdPath p : kAllPaths) {
             if (!runs(p)) continue;
             SCOPED_TRACE(std::string(simdPathName(p)) + (twoMaterials ? ", two materials" : ""));
-            Globules sorted = cloud;
-            NeighborWorkspace workspace;
-            Accelerations grid;
-            twoMaterials ? pairForcesSorting(sorted, table, workspace, grid, p)
-                         : pairForcesSorting(sorted, table(0, 0), workspace, grid, p);
-            Accelerations inOrder;  // back in the cloud's order
-            inOrder.resize(cloud.size());
-            for (std::size_t k = 0; k < sorted.size(); ++k) {
-                const std::size_t i = std::size_t(sorted.id[k]);
-                inOrder.x[i] = grid.x[k];
-                inOrder.y[i] = grid.y[k];
-                inOrder.z[i] = grid.z[k];
-            }
-            expectClose(inOrder, reference);
+            expectClose(gridForces(cloud, table, twoMaterials, p), reference);
         }
     }
 }
 
 // Crowded cells (about 160 globules a group) are split into parts with their own
 // candidates (force_kernels.cpp, GroupParts): still every pair within reach, once, and the
-// same bits on one thread as on two, where the ranges cut groups at other places.
+// same bits on one thread as on two, where the ranges may cut groups at other places.
 TEST(SimdPath, CrowdedCellsGiveTheAllPairsForcesOnAnyThreadCount) {
+    const PairTable table = liquidAndSolid();
     for (bool twoMaterials : {false, true}) {
         const Globules cloud = randomCloud(1500, 5.0, 11, twoMaterials);
-        MaterialSettings liquid, solid;
-        solid.preset = "solid";
-        const PairTable table({liquid, solid}, {});
-        Accelerations reference;
-        twoMaterials ? pairForcesAllPairs(cloud, table, reference)
-                     : pairForcesAllPairs(cloud, table(0, 0), reference);
+        const Accelerations reference = allPairsForces(cloud, table, twoMaterials);
         for (SimdPath p : kAllPaths) {
             if (!runs(p)) continue;
             SCOPED_TRACE(std::string(simdPathName(p)) + (twoMaterials ? ", two materials" : ""));
             Accelerations byThreads[2];
             for (std::size_t threads : {1u, 2u}) {
                 tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-                Globules sorted = cloud;
-                NeighborWorkspace workspace;
-                Accelerations grid;
-                twoMaterials ? pairForcesSorting(sorted, table, workspace, grid, p)
-                             : pairForcesSorting(sorted, table(0, 0), workspace, grid, p);
-                Accelerations& inOrder = byThreads[threads - 1];  // back in the cloud's order
-                inOrder.resize(cloud.size());
-                for (std::size_t k = 0; k < sorted.size(); ++k) {
-                    const std::size_t i = std::size_t(sorted.id[k]);
-                    inOrder.x[i] = grid.x[k];
-                    inOrder.y[i] = grid.y[k];
-                    inOrder.z[i] = grid.z[k];
-                }
+                byThreads[threads - 1] = gridForces(cloud, table, twoMaterials, p);
             }
             expectClose(byThreads[0], reference);
             EXPECT_EQ(byThreads[0].x, byThreads[1].x);
