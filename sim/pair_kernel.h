@@ -1,7 +1,8 @@
 #pragma once
 // The force loop's inner kernels, in three passes:
 //   1. collectGroupCandidates, once per grid cell: the globules of the cell's runs within
-//      reach of the bounding box of the cell's members, copied into one short array;
+//      reach of the bounding box of the cell's members, copied into one short array (a
+//      crowded cell's parts then filter their own from it: force_kernels.cpp, GroupParts);
 //   2. collectNeighbors, per member: those candidates within the pair's reach, compacted
 //      into a NeighborBatch of relative positions and V.P;
 //   3. sumBatch, per member: eq. (2)-(5) summed over the batch, every lane useful.
