@@ -12,6 +12,7 @@
 #include "figures_command.h"
 #include "globular_version.h"
 #include "memory_allocator.h"
+#include "reader_helper.h"
 #include "run_command.h"
 #include "scene.h"
 
@@ -95,6 +96,10 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         return app.exit(e) == 0 ? 0 : kBadInput;
     }
+
+    // Before any thread of ours starts: the readers of cache and surface files are then
+    // forked from a copy that holds no other thread's lock (reader_helper.h).
+    if (!keysCmd->parsed()) globular::startReaderHelper();
 
     globular::ConsoleReporter reporter(stderr, quiet);
     try {

@@ -90,6 +90,11 @@ bool receiveAll(int fd, void* data, std::size_t size,
 /// The helper process, started on first use.
 class ReaderHelper {
 public:
+    void startIfStopped() {
+        std::lock_guard lock(mMutex);
+        if (mFd < 0 && !start()) mGaveUp = true;
+    }
+
     /// The answer of the helper's reader, or false where the helper could not give one
     /// (then it is gone, and later calls fork their readers themselves).
     bool ask(const fs::path& path, PathParser parse, char& status, std::string& answer) {
@@ -168,13 +173,19 @@ private:
     bool mGaveUp = false;
 };
 
+ReaderHelper& theHelper() {
+    static ReaderHelper helper;
+    return helper;
+}
+
 }  // namespace
 
+void startReaderHelper() { theHelper().startIfStopped(); }
+
 std::string parseInHelperChild(const fs::path& path, PathParser parse) {
-    static ReaderHelper helper;
     char status = 0;
     std::string answer;
-    if (!helper.ask(path, parse, status, answer)) {
+    if (!theHelper().ask(path, parse, status, answer)) {
         return parseInChild(path, [&] { return parse(path); });
     }
     if (status != kAnswered) throw IoError(answer);  // parseInChild's own message

@@ -138,6 +138,8 @@ typename GridT::Ptr optionalGrid(const openvdb::GridPtrVec& grids, const std::st
 /// Runs in the reader's child process: OpenVDB parses the file there, and what it read
 /// goes back to the parent in OpenVDB's own streamed encoding.
 std::string parseSurfaceFile(const std::filesystem::path& path) {
+    // Here too: the reader helper may have been forked before this program's first read.
+    openvdb::initialize();
     openvdb::io::File file(path.string());
     file.open(/*delayLoad=*/false);
     openvdb::GridPtrVec grids;

@@ -12,6 +12,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <latch>
+#include <mutex>
 #include <random>
 #include <string>
 #include <thread>
@@ -139,6 +141,17 @@ TEST_F(DamagedFiles, CacheFlipsAndCutsAreRefusedByTheChecksum) {
     }
     writeBytes(file, original);
     EXPECT_EQ(readGlobuleVdb(file).size(), 120u);
+}
+
+// `globular` starts the reader helper before anything initializes OpenVDB (main,
+// before threads): its readers register OpenVDB's grid types themselves.
+TEST_F(DamagedFiles, ReadersOfAHelperStartedBeforeOpenVdbReadEveryFile) {
+    startReaderHelper();
+    const fs::path cache = path("globules.0001.vdb"), surface = path("surface.0001.vdb");
+    writeGlobuleVdb(cache, blob(), CacheInfo{1, 0.0});
+    writeSurfaceVdb(surface, surfaceGlobules(blob(), SurfaceSettings{}));
+    EXPECT_EQ(readGlobuleVdb(cache).size(), 120u);
+    EXPECT_TRUE(readSurfaceVdb(surface).surface);
 }
 
 TEST_F(DamagedFiles, SurfaceVdbWithForgedChecksumNeverCrashes) {
@@ -390,6 +403,36 @@ TEST(ReaderHelper, AKilledHelperIsBypassedThenReplaced) {
     EXPECT_NE(next, helper);
     EXPECT_NE(next, ::getpid());
     EXPECT_EQ(parentOf(next), ::getpid());
+}
+
+/// A library's lock, which the parse below takes.
+std::mutex gLibraryLock;
+
+std::string parseTakingTheLibraryLock(const fs::path&) {
+    std::lock_guard lock(gLibraryLock);
+    return "read";
+}
+
+// A lock that another thread holds when a reader is asked (ASan's allocator, which has no
+// fork handler, in the surface stage's worker threads) does not reach the reader: the
+// helper started before that thread took it has its own copy, free. Started only now, the
+// helper would copy it held, and the reader would hang until its time limit (twice).
+TEST(ReaderHelper, StartedFirstItHoldsNoLockTakenLater) {
+    startReaderHelper();
+    std::latch locked(1), release(1);
+    std::thread holder([&] {
+        std::lock_guard lock(gLibraryLock);
+        locked.count_down();
+        release.wait();
+    });
+    locked.wait();
+    const auto start = std::chrono::steady_clock::now();
+    std::string answer;
+    EXPECT_NO_THROW(answer = parseInHelperChild("x", parseTakingTheLibraryLock));
+    release.count_down();
+    holder.join();
+    EXPECT_EQ(answer, "read");
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10));
 }
 
 }  // namespace
