@@ -50,7 +50,17 @@ contact_sheet = 4
 contact_tile_width = 32
 TOML
 
-# Waits until no job is in the queue (this cluster runs only this test's jobs).
+# The end of every job log of shot $1: why a chunk failed.
+show_logs() {
+    local log
+    for log in "$1"/farm/logs/*; do
+        [[ -f $log ]] || continue
+        echo "--- $log" >&2
+        tail -n 20 "$log" >&2
+    done
+}
+
+# Waits until no job of shot $1 is in the queue (this cluster runs only this test's jobs).
 drain() {
     for _ in $(seq 300); do
         [[ -z $(squeue --noheader) ]] && return 0
@@ -58,7 +68,7 @@ drain() {
     done
     echo "FAIL: the queue did not drain in 150 s:" >&2
     squeue >&2
-    tail -n 20 "$1"/farm/logs/* >&2 || true
+    show_logs "$1"
     exit 1
 }
 
@@ -66,7 +76,11 @@ drain() {
 same_as_local() {
     local n=0
     for png in "$work"/local/frames/frame.*.png "$work/local/contact_sheet.png"; do
-        cmp "$png" "$1/${png#"$work"/local/}" || { echo "FAIL: $1 differs from the local run" >&2; exit 1; }
+        if ! cmp "$png" "$1/${png#"$work"/local/}"; then
+            echo "FAIL: $1 differs from the local run" >&2
+            show_logs "$1"
+            exit 1
+        fi
         n=$((n + 1))
     done
     echo "identical to the local run: $n PNGs ($1)"
