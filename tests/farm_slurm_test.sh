@@ -108,7 +108,11 @@ grep -q 'render .*missing: 1$' "$work/status.txt"
 [[ ! -e $work/farm2/frames/frame.0006.png ]]
 "$globular" farm --resubmit "$work/farm2" | tee "$work/resubmitted.txt"
 grep -q 'submitted render: job [0-9]* (array 1%2)' "$work/resubmitted.txt"
-! grep -q 'submitted surface\|submitted sim' "$work/resubmitted.txt"
+# (`! grep` would not stop the script: set -e ignores a negated command.)
+if grep -q 'submitted surface\|submitted sim' "$work/resubmitted.txt"; then
+    echo "FAIL: --resubmit resubmitted finished simulation or surface jobs" >&2
+    exit 1
+fi
 drain "$work/farm2"
 same_as_local "$work/farm2"
 "$globular" farm --resubmit "$work/farm2" | grep -q 'nothing to resubmit'
