@@ -87,9 +87,10 @@ bool receiveAll(int fd, void* data, std::size_t size,
     }
 }
 
-/// The helper process, started on first use.
+/// The helper process, started by startReaderHelper or on first use.
 class ReaderHelper {
 public:
+    /// Forks the helper where none runs; where that fails, ask forks the readers here.
     void startIfStopped() {
         std::lock_guard lock(mMutex);
         if (mFd < 0 && !start()) mGaveUp = true;
