@@ -323,7 +323,7 @@ Globules unpackGlobules(const std::string& bytes, CacheInfo& info) {
 /// Runs in the reader's child process: OpenVDB parses the file there.
 std::string parseCache(const fs::path& path) {
     // Here too: the reader helper may have been forked before this program's first read.
-    openvdb::initialize();
+    initializeVdb();
     openvdb::io::File file(path.string());
     // No delayed loading: a memory-mapped, truncated file would fault on access.
     file.open(/*delayLoad=*/false);
