@@ -2,8 +2,8 @@
 // the field (no polygonisation): sub-voxel distances where the field crosses the iso
 // value, then closest points carried outward one voxel layer at a time.
 //
-//   1. inside = voxels whose field value exceeds the iso value (a MaskTree);
-//      interface = voxels with a face neighbour on the other side.
+//   1. inside = voxels whose field value exceeds the iso value; interface = voxels with
+//      a face neighbour on the other side (masks per leaf: leaf_masks.h).
 //   2. Each interface voxel gets the foot point of the iso surface's local plane: the
 //      plane perpendicular to the field's gradient (central differences) through the
 //      crossing on the axis most nearly along the gradient, theta = (f - iso)/(f - f_n)
@@ -24,7 +24,6 @@
 //
 // Cost: proportional to the band (a few voxels either side of the surface), where
 // levelSetRebuild meshes the iso surface and scan-converts every polygon.
-#include <openvdb/tools/Morphology.h>
 #include <openvdb/tools/Prune.h>
 #include <openvdb/tools/SignedFloodFill.h>
 #include <openvdb/tree/LeafManager.h>
@@ -35,6 +34,7 @@
 #include <cmath>
 #include <memory>
 
+#include "leaf_masks.h"
 #include "surface_grids.h"
 
 namespace globular {
@@ -43,21 +43,20 @@ namespace {
 
 using openvdb::Coord;
 using openvdb::FloatGrid;
-using openvdb::MaskTree;
 using FloatLeaf = openvdb::FloatTree::LeafNodeType;
-using MaskLeaf = MaskTree::LeafNodeType;
 constexpr int kDim = int(FloatLeaf::DIM);
 constexpr int kVoxels = int(FloatLeaf::SIZE);
 constexpr uint8_t kUnknown = 255;
-static_assert(MaskLeaf::DIM == FloatLeaf::DIM, "mask and float leaves must align");
+static_assert(LeafSet::kDim == kDim, "masks and float leaves must align");
 
 int voxelIndex(int x, int y, int z) { return (x << 6) | (y << 3) | z; }
 
-/// The band's leaves in Coord order, each with its 27 neighbour leaves; per voxel the
-/// layer that reached it and the interface voxel whose surface sample is nearest
-/// (relative coordinates, voxels). Interface voxels are their own source; their sample
-/// is the offset to their foot point on the surface, along the normal there, kept only
-/// for leaves that hold interface voxels.
+/// The band's leaves in Coord order, each with its 27 neighbour leaves, its voxels of
+/// each layer and its inside voxels; per voxel the layer that reached it and the
+/// interface voxel whose surface sample is nearest (relative coordinates, voxels).
+/// Interface voxels are their own source; their sample is the offset to their foot
+/// point on the surface, along the normal there, kept only for leaves that hold
+/// interface voxels.
 struct Band {
     struct Voxels {
         int8_t source[3][kVoxels];
@@ -70,6 +69,8 @@ struct Band {
 
     std::vector<Coord> origins;
     std::vector<std::array<int32_t, 27>> neighbours;  ///< index or -1; (dx+1)*9+(dy+1)*3+dz+1
+    std::vector<std::vector<LeafBits>> layers;        ///< [layer][leaf]
+    std::vector<LeafBits> inside;
     std::unique_ptr<Voxels[]> voxels;
     /// The level set's leaves, one per band leaf: distances (voxels, unsigned) as the
     /// layers find them, signed and scaled at the end.
@@ -124,60 +125,114 @@ inline float Band::distanceToSample(std::size_t i, int x, int y, int z,
     return std::sqrt(beyond * beyond + along * along);
 }
 
-/// Voxels whose field value exceeds @p iso, as a mask with the field's leaves.
-MaskTree insideMask(const FloatGrid& field, float iso) {
+/// The field's inside voxels (value above @p iso), over the leaves that hold some and
+/// their face neighbours (where the interface's outer side may lie).
+struct InsideVoxels {
+    LeafSet leaves;
+    std::vector<LeafBits> inside;
+};
+
+InsideVoxels insideVoxels(const FloatGrid& field, float iso) {
     openvdb::tree::LeafManager<const openvdb::FloatTree> leaves(field.tree());
-    std::vector<std::unique_ptr<MaskLeaf>> masks(leaves.leafCount());
+    std::vector<LeafBits> bits(leaves.leafCount());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.leafCount(), 64), [&](auto r) {
         for (std::size_t i = r.begin(); i < r.end(); ++i) {
-            const FloatLeaf& leaf = leaves.leaf(i);
-            const float* v = leaf.buffer().data();
-            auto mask = std::make_unique<MaskLeaf>(leaf.origin(), false);
-            bool any = false;
-            for (int n = 0; n < kVoxels; ++n) {
-                if (v[n] > iso) {
-                    mask->setValueOn(openvdb::Index(n));
-                    any = true;
-                }
+            const float* v = leaves.leaf(i).buffer().data();
+            for (int x = 0; x < 8; ++x) {
+                uint64_t word = 0;
+                for (int b = 0; b < 64; ++b) word |= uint64_t(v[x * 64 + b] > iso) << b;
+                bits[i].word[std::size_t(x)] = word;
             }
-            if (any) masks[i] = std::move(mask);
         }
     });
-    MaskTree inside(false);
-    for (auto& mask : masks) {
-        if (mask) inside.addLeaf(mask.release());
+    std::vector<Coord> origins;
+    for (std::size_t i = 0; i < bits.size(); ++i) {
+        if (!bits[i].any()) continue;
+        const Coord o = leaves.leaf(i).origin();
+        origins.push_back(o);
+        for (int a = 0; a < 3; ++a) {
+            for (int side : {-kDim, kDim}) {
+                Coord n = o;
+                n[a] += side;
+                origins.push_back(n);
+            }
+        }
     }
-    return inside;
+    InsideVoxels result{LeafSet(std::move(origins)), {}};
+    result.inside.resize(result.leaves.size());
+    for (std::size_t i = 0; i < bits.size(); ++i) {
+        if (bits[i].any()) result.inside[std::size_t(result.leaves.find(leaves.leaf(i).origin()))] = bits[i];
+    }
+    return result;
 }
 
-/// Voxels with a face neighbour on the other side of the iso surface, both sides: the
-/// inside dilated by one voxel less the inside eroded by one.
-MaskTree interfaceMask(const MaskTree& inside) {
-    using openvdb::tools::IGNORE_TILES;
-    using openvdb::tools::NN_FACE;
-    MaskTree shell(inside);
-    openvdb::tools::dilateActiveValues(shell, 1, NN_FACE, IGNORE_TILES);
-    MaskTree core(inside);
-    openvdb::tools::erodeActiveValues(core, 1, NN_FACE, IGNORE_TILES);
-    shell.topologyDifference(core);
-    openvdb::tools::pruneInactive(shell);  // the difference leaves empty leaves
-    return shell;
+/// Layers 0 (the interface) to @p layerCount of the band, over the leaves within
+/// @p layerCount voxels of the interface's; layer k holds the voxels at Chebyshev
+/// distance k from the interface.
+struct BandLayers {
+    LeafSet leaves;
+    std::vector<std::vector<LeafBits>> layers;  ///< [layer][leaf]
+};
+
+BandLayers bandLayers(const InsideVoxels& in, int layerCount) {
+    const std::vector<LeafBits> interface = interfaceOf(in.inside, in.leaves.faces());
+    const int ring = (layerCount + kDim - 1) / kDim;
+    std::vector<Coord> near;
+    for (std::size_t i = 0; i < interface.size(); ++i) {
+        if (!interface[i].any()) continue;
+        for (int dx = -ring; dx <= ring; ++dx) {
+            for (int dy = -ring; dy <= ring; ++dy) {
+                for (int dz = -ring; dz <= ring; ++dz) {
+                    near.push_back(in.leaves.origin(i).offsetBy(dx * kDim, dy * kDim, dz * kDim));
+                }
+            }
+        }
+    }
+    BandLayers band{LeafSet(std::move(near)), {}};
+    const LeafSet::Faces faces = band.leaves.faces();
+    auto& layers = band.layers;
+    layers.emplace_back(band.leaves.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, band.leaves.size(), 256), [&](auto r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+            const int32_t j = in.leaves.find(band.leaves.origin(i));
+            if (j >= 0) layers[0][i] = interface[std::size_t(j)];
+        }
+    });
+    for (int k = 1; k <= layerCount; ++k) {
+        std::vector<LeafBits> next = dilateByOneVoxel(layers[std::size_t(k - 1)], faces);
+        for (std::size_t i = 0; i < next.size(); ++i) {
+            for (std::size_t x = 0; x < 8; ++x) {
+                uint64_t& w = next[i].word[x];
+                w &= ~layers[std::size_t(k - 1)][i].word[x];
+                if (k >= 2) w &= ~layers[std::size_t(k - 2)][i].word[x];
+            }
+        }
+        layers.push_back(std::move(next));
+    }
+    return band;
 }
 
-/// The band over the leaves of @p layers; samples for the leaves of layer 0.
-Band makeBand(const std::vector<MaskTree>& layers) {
+/// The band over the leaves of @p layers that hold band voxels; samples for those with
+/// interface voxels.
+Band makeBand(const BandLayers& layers, const InsideVoxels& in) {
     Band band;
-    for (const MaskTree& layer : layers) {
-        for (auto leaf = layer.cbeginLeaf(); leaf; ++leaf) band.origins.push_back(leaf->origin());
+    std::vector<std::size_t> kept;
+    for (std::size_t i = 0; i < layers.leaves.size(); ++i) {
+        bool any = false;
+        for (const auto& layer : layers.layers) any |= layer[i].any();
+        if (any) kept.push_back(i);
     }
-    std::sort(band.origins.begin(), band.origins.end());
-    band.origins.erase(std::unique(band.origins.begin(), band.origins.end()), band.origins.end());
-    const std::size_t n = band.origins.size();
+    const std::size_t n = kept.size();
+    band.origins.resize(n);
+    band.layers.assign(layers.layers.size(), std::vector<LeafBits>(n));
+    band.inside.resize(n);
     band.neighbours.resize(n);
     band.sampleSlot.assign(n, -1);
     int32_t slots = 0;
-    for (auto leaf = layers[0].cbeginLeaf(); leaf; ++leaf) {
-        band.sampleSlot[std::size_t(band.find(leaf->origin()))] = slots++;
+    for (std::size_t i = 0; i < n; ++i) {
+        band.origins[i] = layers.leaves.origin(kept[i]);
+        for (std::size_t k = 0; k < layers.layers.size(); ++k) band.layers[k][i] = layers.layers[k][kept[i]];
+        if (band.layers[0][i].any()) band.sampleSlot[i] = slots++;
     }
     // Not value-initialised: every value is written before it is read but the layers,
     // filled below.
@@ -195,6 +250,8 @@ Band makeBand(const std::vector<MaskTree>& layers) {
                     }
                 }
             }
+            const int32_t j = in.leaves.find(band.origins[i]);
+            if (j >= 0) band.inside[i] = in.inside[std::size_t(j)];
             std::fill(std::begin(band.voxels[i].layer), std::end(band.voxels[i].layer), kUnknown);
             band.out[i] = std::make_unique<FloatLeaf>(band.origins[i], 0.0f, false);
         }
@@ -204,18 +261,17 @@ Band makeBand(const std::vector<MaskTree>& layers) {
 
 /// Layer 0: the foot point of the local plane through the iso crossing of each
 /// interface voxel.
-void footOnInterface(const FloatGrid& field, float iso, const MaskTree& interface, Band& band) {
-    openvdb::tree::LeafManager<const MaskTree> leaves(interface);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.leafCount(), 16), [&](auto r) {
+void footOnInterface(const FloatGrid& field, float iso, Band& band) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, band.origins.size(), 16), [&](auto r) {
         auto acc = field.getConstAccessor();
-        for (std::size_t l = r.begin(); l < r.end(); ++l) {
-            const MaskLeaf& leaf = leaves.leaf(l);
-            const std::size_t i = std::size_t(band.find(leaf.origin()));
+        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+            if (band.sampleSlot[i] < 0) continue;
             Band::Voxels& voxels = band.voxels[i];
             Band::Samples& sample = band.samples[std::size_t(band.sampleSlot[i])];
             float* distance = band.out[i]->buffer().data();
-            for (auto it = leaf.cbeginValueOn(); it; ++it) {
-                const Coord ijk = it.getCoord();
+            band.layers[0][i].forEach([&](int v) {
+                const Coord local = FloatLeaf::offsetToLocalCoord(openvdb::Index(v));
+                const Coord ijk = band.origins[i] + local;
                 const float f = acc.getValue(ijk);
                 const bool in = f > iso;
                 float gradient[3];   // central differences, voxel units
@@ -267,16 +323,14 @@ void footOnInterface(const FloatGrid& field, float iso, const MaskTree& interfac
                         if (direction[a] != 0) offset[a] = direction[a] / theta[a] / sum;
                     }
                 }
-                const auto v = it.pos();
                 for (int a = 0; a < 3; ++a) {
                     sample.offset[a][v] = int16_t(std::lround(offset[a] * Band::kOffsetScale));
                     voxels.source[a][v] = 0;
                 }
                 const int zero[3] = {0, 0, 0};
-                const Coord local = MaskLeaf::offsetToLocalCoord(v);
                 distance[v] = band.distanceToSample(i, local.x(), local.y(), local.z(), zero);
                 voxels.layer[v] = 0;
-            }
+            });
         }
     });
 }
@@ -302,17 +356,15 @@ struct NeighbourOffsets {
 
 /// Layer k: each voxel takes, among the samples its neighbours of layer k - 1 took, the
 /// one nearest to itself.
-void footFromNeighbours(const MaskTree& layer, uint8_t k, Band& band) {
+void footFromNeighbours(uint8_t k, Band& band) {
     static const NeighbourOffsets offsets;
-    openvdb::tree::LeafManager<const MaskTree> leaves(layer);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.leafCount(), 16), [&](auto r) {
-        for (std::size_t l = r.begin(); l < r.end(); ++l) {
-            const MaskLeaf& leaf = leaves.leaf(l);
-            const std::size_t i = std::size_t(band.find(leaf.origin()));
+    const std::vector<LeafBits>& layer = band.layers[k];
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, band.origins.size(), 16), [&](auto r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i) {
             Band::Voxels& voxels = band.voxels[i];
             float* distance = band.out[i]->buffer().data();
-            for (auto it = leaf.cbeginValueOn(); it; ++it) {
-                const Coord p = MaskLeaf::offsetToLocalCoord(it.pos());
+            layer[i].forEach([&](int voxel) {
+                const Coord p = FloatLeaf::offsetToLocalCoord(openvdb::Index(voxel));
                 float best = INFINITY;
                 int bestSource[3] = {0, 0, 0};
                 int tried[26];  // sources already measured: neighbours often share one
@@ -341,17 +393,16 @@ void footFromNeighbours(const MaskTree& layer, uint8_t k, Band& band) {
                         for (int a = 0; a < 3; ++a) bestSource[a] = s[a];
                     }
                 }
-                for (int a = 0; a < 3; ++a) voxels.source[a][it.pos()] = int8_t(bestSource[a]);
-                distance[it.pos()] = best;
-            }
+                for (int a = 0; a < 3; ++a) voxels.source[a][voxel] = int8_t(bestSource[a]);
+                distance[voxel] = best;
+            });
         }
     });
     // Marked only now, so that no voxel of this layer read another of the same layer.
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.leafCount(), 64), [&](auto r) {
-        for (std::size_t l = r.begin(); l < r.end(); ++l) {
-            const MaskLeaf& leaf = leaves.leaf(l);
-            Band::Voxels& voxels = band.voxels[std::size_t(band.find(leaf.origin()))];
-            for (auto it = leaf.cbeginValueOn(); it; ++it) voxels.layer[it.pos()] = k;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, band.origins.size(), 64), [&](auto r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+            Band::Voxels& voxels = band.voxels[i];
+            layer[i].forEach([&](int voxel) { voxels.layer[voxel] = k; });
         }
     });
 }
@@ -359,8 +410,6 @@ void footFromNeighbours(const MaskTree& layer, uint8_t k, Band& band) {
 }  // namespace
 
 FloatGrid::Ptr fieldToLevelSet(const FloatGrid& field, double isoValue, double bandWidth) {
-    using openvdb::tools::IGNORE_TILES;
-    using openvdb::tools::NN_FACE_EDGE_VERTEX;
     const float iso = float(isoValue);
     const float h = float(field.voxelSize()[0]);
     const float background = float(bandWidth) * h;
@@ -370,40 +419,27 @@ FloatGrid::Ptr fieldToLevelSet(const FloatGrid& field, double isoValue, double b
     levelSet->setGridClass(openvdb::GRID_LEVEL_SET);
     levelSet->setName("surface");
 
-    const MaskTree inside = insideMask(field, iso);
+    const InsideVoxels inside = insideVoxels(field, iso);
     // A voxel closer than bandWidth to the surface lies within Chebyshev distance
     // ceil(bandWidth) of an interface voxel: the cell holding its nearest surface point
     // has interface voxels at its corners, within 1 of that point along each axis.
     const int layerCount = int(std::ceil(bandWidth));
-    std::vector<MaskTree> layers;
-    layers.push_back(interfaceMask(inside));
-    for (int k = 1; k <= layerCount; ++k) {
-        MaskTree next(layers[std::size_t(k - 1)]);
-        openvdb::tools::dilateActiveValues(next, 1, NN_FACE_EDGE_VERTEX, IGNORE_TILES);
-        next.topologyDifference(layers[std::size_t(k - 1)]);
-        if (k >= 2) next.topologyDifference(layers[std::size_t(k - 2)]);
-        openvdb::tools::pruneInactive(next);  // the differences leave empty leaves
-        layers.push_back(std::move(next));
-    }
-    if (layers[0].empty()) return levelSet;
+    Band band = makeBand(bandLayers(inside, layerCount), inside);
+    if (band.origins.empty()) return levelSet;
 
-    Band band = makeBand(layers);
-    footOnInterface(field, iso, layers[0], band);
-    for (int k = 1; k <= layerCount; ++k) {
-        footFromNeighbours(layers[std::size_t(k)], uint8_t(k), band);
-    }
+    footOnInterface(field, iso, band);
+    for (int k = 1; k <= layerCount; ++k) footFromNeighbours(uint8_t(k), band);
 
     // Distances, signed by the inside mask; active within the band.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, band.origins.size(), 64), [&](auto r) {
-        openvdb::tree::ValueAccessor<const MaskTree> insideAcc(inside);
         for (std::size_t i = r.begin(); i < r.end(); ++i) {
-            const MaskLeaf* in = insideAcc.probeConstLeaf(band.origins[i]);
+            const LeafBits& in = band.inside[i];
             const Band::Voxels& voxels = band.voxels[i];
             FloatLeaf& leaf = *band.out[i];
             float* values = leaf.buffer().data();
             bool any = false;
             for (int v = 0; v < kVoxels; ++v) {
-                const float sign = in && in->isValueOn(openvdb::Index(v)) ? -1.0f : 1.0f;
+                const float sign = in.test(v) ? -1.0f : 1.0f;
                 const float d = voxels.layer[v] != kUnknown ? values[v] : float(bandWidth);
                 if (d < float(bandWidth)) {
                     values[v] = sign * d * h;

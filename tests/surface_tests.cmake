@@ -1,5 +1,5 @@
 # Tests of globular_surface. surface_tests stays OpenVDB-free (fast to compile);
-# surface_vdb_tests includes OpenVDB to inspect grids and files.
+# surface_vdb_tests includes OpenVDB to inspect grids and files (and the leaf masks' Coord).
 globular_test(surface_tests
     SOURCES surface_kernel_test.cpp
             surface_settings_test.cpp
@@ -9,6 +9,7 @@ globular_test(surface_tests
     LIBS globular_surface)
 globular_test(surface_vdb_tests
     SOURCES surface_vdb_test.cpp
+            leaf_masks_test.cpp
     LIBS globular_surface OpenVDB::openvdb)
 # Cutting colliders out of the liquid (collider_cut.h); includes OpenVDB to read the grids.
 globular_test(collider_cut_tests

@@ -125,18 +125,18 @@ TEST(MetaballSplat, DeepLeavesMayHoldPartialSumsThatChangeNothingNearTheSurface)
     expectSameGrid(*fieldToLevelSet(*exact, 0.5, 3.0), *fieldToLevelSet(*deep, 0.5, 3.0));
 }
 
-TEST(FieldToLevelSet, LoneGlobuleGivesItsDistanceWithinTheBand) {
+/// A lone globule's level set at voxel size @p h with a band @p band voxels wide: every
+/// active voxel lies within the band and holds its distance to the sphere of radius 1
+/// (Wyvill at iso 0.5, influence 2) to within @p tolerance voxels; every voxel nearer than
+/// the band's width less @p margin voxels is active.
+void expectLoneGlobuleDistances(double band, double h, double tolerance, double margin) {
     openvdb::initialize();
-    const double h = 0.1, band = 3;
     Globules g;
     g.add({0.013, -0.021, 0.037}, {0, 0, 0}, 1.0f, 1, 0);  // off the voxel lattice
     const auto field = splatMetaballs(g, MetaballKernel{KernelType::Wyvill}, 2.0, h);
     const auto levelSet = fieldToLevelSet(*field, 0.5, band);
     EXPECT_EQ(levelSet->getGridClass(), openvdb::GRID_LEVEL_SET);
     EXPECT_FLOAT_EQ(levelSet->background(), float(band * h));
-    // Every active voxel lies within the band and holds its distance to the sphere of
-    // radius 1 (Wyvill at iso 0.5, influence 2), to a fraction of a voxel; every voxel
-    // nearer than the band's width is active.
     const openvdb::Vec3d centre(0.013, -0.021, 0.037);
     double worst = 0;
     std::size_t missing = 0;
@@ -145,14 +145,15 @@ TEST(FieldToLevelSet, LoneGlobuleGivesItsDistanceWithinTheBand) {
         worst = std::max(worst, std::abs(*it - exact) / h);
         EXPECT_LT(std::abs(*it), band * h);
     }
-    EXPECT_LT(worst, 0.25) << "voxels";
+    EXPECT_LT(worst, tolerance) << "voxels";
     auto acc = levelSet->getConstAccessor();
-    for (int x = -16; x <= 16; ++x) {
-        for (int y = -16; y <= 16; ++y) {
-            for (int z = -16; z <= 16; ++z) {
+    const int reach = int(std::ceil(1.0 / h + band)) + 2;
+    for (int x = -reach; x <= reach; ++x) {
+        for (int y = -reach; y <= reach; ++y) {
+            for (int z = -reach; z <= reach; ++z) {
                 const Coord ijk(x, y, z);
                 const double exact = (levelSet->indexToWorld(ijk) - centre).length() - 1.0;
-                if (std::abs(exact) < (band - 0.2) * h && !acc.isValueOn(ijk)) ++missing;
+                if (std::abs(exact) < (band - margin) * h && !acc.isValueOn(ijk)) ++missing;
                 // Inactive voxels and tiles carry the sign: negative inside.
                 if (std::abs(exact) > 0.2 * h) {
                     EXPECT_EQ(acc.getValue(ijk) < 0, exact < 0);
@@ -161,6 +162,18 @@ TEST(FieldToLevelSet, LoneGlobuleGivesItsDistanceWithinTheBand) {
         }
     }
     EXPECT_EQ(missing, 0u);
+}
+
+TEST(FieldToLevelSet, LoneGlobuleGivesItsDistanceWithinTheBand) {
+    expectLoneGlobuleDistances(3, 0.1, 0.25, 0.2);
+}
+
+// A band wider than a leaf (8 voxels): its layers are looked for two leaves out.
+// Closest points carried outward layer by layer drift from the exact distance the
+// further they go (up to 1.9 voxels at 9 voxels out on this sphere): hence the
+// looser bounds.
+TEST(FieldToLevelSet, BandWiderThanALeafKeepsItsVoxels) {
+    expectLoneGlobuleDistances(10, 0.05, 2.0, 1.5);
 }
 
 TEST(FieldToLevelSet, AgreesWithLevelSetRebuildWithinAVoxel) {
