@@ -10,6 +10,7 @@ globular_test(surface_tests
 globular_test(surface_vdb_tests
     SOURCES surface_vdb_test.cpp
             leaf_masks_test.cpp
+            splat_kernel_test.cpp
     LIBS globular_surface OpenVDB::openvdb)
 # Cutting colliders out of the liquid (collider_cut.h); includes OpenVDB to read the grids.
 globular_test(collider_cut_tests
