@@ -3,7 +3,7 @@
 // Each build of force_kernels.cpp exports only its table, kForceKernels, in a namespace
 // named after its path; everything else it compiled (the inline kernels of
 // pair_kernel.h, the neighbour grid, the standard library's templates) is made local
-// to it when it is built (sim/CMakeLists.txt), so the linker never swaps an AVX-512 copy
+// to it when it is built (cmake/isolated_build.cmake), so the linker never swaps an AVX-512 copy
 // of an inline function into the scalar path, or the reverse.
 
 #include "accelerations.h"

@@ -11,7 +11,8 @@ globular_test(thermal_test SOURCES thermal_test.cpp LIBS globular_sim)
 globular_test(simd_path_test SOURCES simd_path_test.cpp LIBS globular_sim)
 
 add_test(NAME SimdPath.ObjectsAreIsolatedAndBuiltForTheirPath
-         COMMAND ${CMAKE_COMMAND} -DOBJECTS=${PROJECT_BINARY_DIR}/sim -DNM=${CMAKE_NM}
+         COMMAND ${CMAKE_COMMAND} -DOBJECTS=${PROJECT_BINARY_DIR}/sim -DSTEM=force_kernels
+                 -DTABLE=kForceKernels -DPATHS=scalar,avx2,avx512 -DNM=${CMAKE_NM}
                  -DOBJDUMP=${CMAKE_OBJDUMP} -P ${CMAKE_CURRENT_SOURCE_DIR}/check_simd_objects.cmake)
 
 # The physics and thermal suites again on each build of the force loops (simd_path.h);

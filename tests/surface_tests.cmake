@@ -6,11 +6,16 @@ globular_test(surface_tests
             surface_mesh_test.cpp
             surface_frame_test.cpp
             surface_stage_test.cpp
+            splat_kernel_test.cpp
     LIBS globular_surface)
+# The splat loop's builds (surface/splat_kernel.h) are isolated like the force loops'.
+add_test(NAME SplatKernel.ObjectsAreIsolatedAndBuiltForTheirPath
+         COMMAND ${CMAKE_COMMAND} -DOBJECTS=${PROJECT_BINARY_DIR}/surface -DSTEM=splat_kernel
+                 -DTABLE=kSplatKernels -DPATHS=scalar,avx2 -DNM=${CMAKE_NM}
+                 -DOBJDUMP=${CMAKE_OBJDUMP} -P ${CMAKE_CURRENT_SOURCE_DIR}/check_simd_objects.cmake)
 globular_test(surface_vdb_tests
     SOURCES surface_vdb_test.cpp
             leaf_masks_test.cpp
-            splat_kernel_test.cpp
     LIBS globular_surface OpenVDB::openvdb)
 # Cutting colliders out of the liquid (collider_cut.h); includes OpenVDB to read the grids.
 globular_test(collider_cut_tests
