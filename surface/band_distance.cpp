@@ -161,7 +161,8 @@ InsideVoxels insideVoxels(const FloatGrid& field, float iso) {
     InsideVoxels result{LeafSet(std::move(origins)), {}};
     result.inside.resize(result.leaves.size());
     for (std::size_t i = 0; i < bits.size(); ++i) {
-        if (bits[i].any()) result.inside[std::size_t(result.leaves.find(leaves.leaf(i).origin()))] = bits[i];
+        if (!bits[i].any()) continue;
+        result.inside[std::size_t(result.leaves.find(leaves.leaf(i).origin()))] = bits[i];
     }
     return result;
 }
@@ -231,7 +232,9 @@ Band makeBand(const BandLayers& layers, const InsideVoxels& in) {
     int32_t slots = 0;
     for (std::size_t i = 0; i < n; ++i) {
         band.origins[i] = layers.leaves.origin(kept[i]);
-        for (std::size_t k = 0; k < layers.layers.size(); ++k) band.layers[k][i] = layers.layers[k][kept[i]];
+        for (std::size_t k = 0; k < layers.layers.size(); ++k) {
+            band.layers[k][i] = layers.layers[k][kept[i]];
+        }
         if (band.layers[0][i].any()) band.sampleSlot[i] = slots++;
     }
     // Not value-initialised: every value is written before it is read but the layers,

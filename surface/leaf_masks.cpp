@@ -24,19 +24,32 @@ LeafBits neighbourBits(const LeafBits& m, const LeafBits* beyond, int axis, int 
     for (std::size_t x = 0; x < 8; ++x) {
         const uint64_t w = m.word[x];
         switch (axis * 2 + (dir > 0)) {
-            case 0: out.word[x] = x > 0 ? m.word[x - 1] : b.word[7]; break;
-            case 1: out.word[x] = x < 7 ? m.word[x + 1] : b.word[0]; break;
-            case 2: out.word[x] = (w << 8) | (b.word[x] >> 56); break;
-            case 3: out.word[x] = (w >> 8) | (b.word[x] << 56); break;
-            case 4: out.word[x] = ((w << 1) & ~kZ0) | ((b.word[x] >> 7) & kZ0); break;
-            default: out.word[x] = ((w >> 1) & ~kZ7) | ((b.word[x] << 7) & kZ7); break;
+            case 0:
+                out.word[x] = x > 0 ? m.word[x - 1] : b.word[7];
+                break;
+            case 1:
+                out.word[x] = x < 7 ? m.word[x + 1] : b.word[0];
+                break;
+            case 2:
+                out.word[x] = (w << 8) | (b.word[x] >> 56);
+                break;
+            case 3:
+                out.word[x] = (w >> 8) | (b.word[x] << 56);
+                break;
+            case 4:
+                out.word[x] = ((w << 1) & ~kZ0) | ((b.word[x] >> 7) & kZ0);
+                break;
+            default:
+                out.word[x] = ((w >> 1) & ~kZ7) | ((b.word[x] << 7) & kZ7);
+                break;
         }
     }
     return out;
 }
 
 /// The neighbour leaf of @p masks on face @p f (LeafSet::Faces order), or null.
-const LeafBits* onFace(const std::vector<LeafBits>& masks, const std::array<int32_t, 6>& faces, int f) {
+const LeafBits* onFace(const std::vector<LeafBits>& masks, const std::array<int32_t, 6>& faces,
+                       int f) {
     return faces[std::size_t(f)] >= 0 ? &masks[std::size_t(faces[std::size_t(f)])] : nullptr;
 }
 
@@ -48,12 +61,15 @@ void forEachLeaf(std::size_t n, Body&& body) {
 }
 
 /// @p mask grown by one voxel both ways along @p axis.
-std::vector<LeafBits> dilateAlong(const std::vector<LeafBits>& mask, const LeafSet::Faces& faces, int axis) {
+std::vector<LeafBits> dilateAlong(const std::vector<LeafBits>& mask, const LeafSet::Faces& faces,
+                                  int axis) {
     std::vector<LeafBits> out(mask.size());
     forEachLeaf(mask.size(), [&](std::size_t i) {
         const LeafBits below = neighbourBits(mask[i], onFace(mask, faces[i], 2 * axis), axis, -1);
-        const LeafBits above = neighbourBits(mask[i], onFace(mask, faces[i], 2 * axis + 1), axis, +1);
-        for (std::size_t x = 0; x < 8; ++x) out[i].word[x] = mask[i].word[x] | below.word[x] | above.word[x];
+        const LeafBits above =
+            neighbourBits(mask[i], onFace(mask, faces[i], 2 * axis + 1), axis, +1);
+        for (std::size_t x = 0; x < 8; ++x)
+            out[i].word[x] = mask[i].word[x] | below.word[x] | above.word[x];
     });
     return out;
 }
@@ -87,14 +103,15 @@ LeafSet::Faces LeafSet::faces() const {
     return faces;
 }
 
-std::vector<LeafBits> interfaceOf(const std::vector<LeafBits>& inside, const LeafSet::Faces& faces) {
+std::vector<LeafBits> interfaceOf(const std::vector<LeafBits>& inside,
+                                  const LeafSet::Faces& faces) {
     std::vector<LeafBits> out(inside.size());
     forEachLeaf(inside.size(), [&](std::size_t i) {
         // Grown by the face neighbours, less shrunk by them: a voxel that differs from one.
         LeafBits grown = inside[i], shrunk = inside[i];
         for (int f = 0; f < 6; ++f) {
-            const LeafBits seen = neighbourBits(inside[i], onFace(inside, faces[i], f), f / 2,
-                                                f % 2 ? +1 : -1);
+            const LeafBits seen =
+                neighbourBits(inside[i], onFace(inside, faces[i], f), f / 2, f % 2 ? +1 : -1);
             for (std::size_t x = 0; x < 8; ++x) {
                 grown.word[x] |= seen.word[x];
                 shrunk.word[x] &= seen.word[x];
@@ -105,7 +122,8 @@ std::vector<LeafBits> interfaceOf(const std::vector<LeafBits>& inside, const Lea
     return out;
 }
 
-std::vector<LeafBits> dilateByOneVoxel(const std::vector<LeafBits>& mask, const LeafSet::Faces& faces) {
+std::vector<LeafBits> dilateByOneVoxel(const std::vector<LeafBits>& mask,
+                                       const LeafSet::Faces& faces) {
     // The 3x3x3 neighbourhood is the product of three 1-D ones: three passes, each over
     // the previous one's result (its neighbours' included).
     return dilateAlong(dilateAlong(dilateAlong(mask, faces, 2), faces, 1), faces, 0);

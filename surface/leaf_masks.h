@@ -41,7 +41,7 @@ struct LeafBits {
 
 /// A set of leaf origins (multiples of the leaf size), sorted, with lookups.
 class LeafSet {
-public:
+  public:
     static constexpr int kDim = 8;
 
     /// The set of @p origins, in any order, duplicates allowed.
@@ -57,7 +57,7 @@ public:
     using Faces = std::vector<std::array<int32_t, 6>>;
     Faces faces() const;
 
-private:
+  private:
     std::vector<openvdb::Coord> origins_;
 };
 
@@ -68,6 +68,7 @@ private:
 std::vector<LeafBits> interfaceOf(const std::vector<LeafBits>& inside, const LeafSet::Faces& faces);
 
 /// @p mask grown by one voxel in all 26 directions, kept to the set's leaves.
-std::vector<LeafBits> dilateByOneVoxel(const std::vector<LeafBits>& mask, const LeafSet::Faces& faces);
+std::vector<LeafBits> dilateByOneVoxel(const std::vector<LeafBits>& mask,
+                                       const LeafSet::Faces& faces);
 
 }  // namespace globular

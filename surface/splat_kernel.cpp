@@ -1,13 +1,14 @@
 // The splat's inner loop (splat_kernel.h). This file is compiled once per instruction set
 // (surface/CMakeLists.txt) with GLOBULAR_SIMD_NAMESPACE naming the build.
+#include "splat_kernel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 
-#include "splat_kernel.h"
-
 #ifndef GLOBULAR_SIMD_NAMESPACE
-#error "splat_kernel.cpp is built once per path with GLOBULAR_SIMD_NAMESPACE (surface/CMakeLists.txt)"
+#error \
+    "splat_kernel.cpp is built once per path with GLOBULAR_SIMD_NAMESPACE (surface/CMakeLists.txt)"
 #endif
 
 namespace globular {

@@ -34,9 +34,9 @@ struct SplatChannels {
 /// What one block accumulates: the field's sum and, when per-globule values are
 /// averaged, sum(w value) of each channel beside it, from the same kernel values.
 struct BlockSums {
-    float* sum;                                  ///< 8^3 voxels
-    float* weighted[kMaxSplatChannels] = {};     ///< 8^3 voxels per channel; means only
-    const SplatChannels* channels = nullptr;     ///< means only
+    float* sum;                               ///< 8^3 voxels
+    float* weighted[kMaxSplatChannels] = {};  ///< 8^3 voxels per channel; means only
+    const SplatChannels* channels = nullptr;  ///< means only
 };
 
 /// True when every value of a block's sum exceeds @p threshold.

@@ -1,22 +1,20 @@
 // Leaf-sized voxel masks and their morphology (surface/leaf_masks.h) against the
 // definitions, voxel by voxel, on random sparse sets that cross leaf faces, edges and
 // corners at negative and positive coordinates.
+#include "leaf_masks.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
 #include <set>
 #include <vector>
 
-#include "leaf_masks.h"
-
 namespace globular {
 namespace {
 
 using openvdb::Coord;
 
-Coord leafOf(const Coord& voxel) {
-    return Coord(voxel.x() & ~7, voxel.y() & ~7, voxel.z() & ~7);
-}
+Coord leafOf(const Coord& voxel) { return Coord(voxel.x() & ~7, voxel.y() & ~7, voxel.z() & ~7); }
 
 int voxelIndex(const Coord& voxel) {
     return ((voxel.x() & 7) << 6) | ((voxel.y() & 7) << 3) | (voxel.z() & 7);
@@ -83,7 +81,8 @@ TEST(LeafMasks, SetIsSortedWithoutDuplicatesAndFindsItsLeaves) {
     EXPECT_EQ(leaves.find(Coord(0, 0, 0)), -1);
     const LeafSet::Faces faces = leaves.faces();
     EXPECT_EQ(faces[0][1], -1);  // (0, 0, 0) is not in the set
-    const LeafSet row({Coord(0, 0, -8), Coord(0, 0, 0), Coord(0, 0, 8), Coord(0, 8, 0), Coord(-8, 0, 0)});
+    const LeafSet row(
+        {Coord(0, 0, -8), Coord(0, 0, 0), Coord(0, 0, 8), Coord(0, 8, 0), Coord(-8, 0, 0)});
     const auto rowFaces = row.faces();
     const std::size_t middle = std::size_t(row.find(Coord(0, 0, 0)));
     EXPECT_EQ(rowFaces[middle][0], row.find(Coord(-8, 0, 0)));
@@ -98,7 +97,8 @@ TEST(LeafMasks, InterfaceIsTheVoxelsWithAFaceNeighbourOnTheOtherSide) {
     for (const double chance : {0.02, 0.3, 0.7}) {
         const std::set<Coord> inside = randomVoxels(chance, 11);
         const LeafSet leaves = leavesAround(inside, 1);
-        const std::vector<LeafBits> interface = interfaceOf(masksOf(inside, leaves), leaves.faces());
+        const std::vector<LeafBits> interface =
+            interfaceOf(masksOf(inside, leaves), leaves.faces());
         std::size_t on = 0, wrong = 0;
         forEveryVoxel(leaves, interface, [&](const Coord& v, bool bit) {
             const bool in = inside.count(v) > 0;
@@ -122,13 +122,15 @@ TEST(LeafMasks, DilationByOneVoxelTakesAll26Neighbours) {
     for (const double chance : {0.002, 0.05}) {
         const std::set<Coord> voxels = randomVoxels(chance, 5);
         const LeafSet leaves = leavesAround(voxels, 1);
-        const std::vector<LeafBits> grown = dilateByOneVoxel(masksOf(voxels, leaves), leaves.faces());
+        const std::vector<LeafBits> grown =
+            dilateByOneVoxel(masksOf(voxels, leaves), leaves.faces());
         std::size_t on = 0, wrong = 0;
         forEveryVoxel(leaves, grown, [&](const Coord& v, bool bit) {
             bool near = false;
             for (int dx = -1; dx <= 1; ++dx) {
                 for (int dy = -1; dy <= 1; ++dy) {
-                    for (int dz = -1; dz <= 1; ++dz) near |= voxels.count(v.offsetBy(dx, dy, dz)) > 0;
+                    for (int dz = -1; dz <= 1; ++dz)
+                        near |= voxels.count(v.offsetBy(dx, dy, dz)) > 0;
                 }
             }
             on += bit;

@@ -1,13 +1,13 @@
 // The splat's inner loop (surface/splat_kernel.h): every build gives the same bits, for
 // each kernel, with and without per-globule means, and the sums are the kernel's values.
+#include "splat_kernel.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 #include <random>
 #include <vector>
-
-#include "splat_kernel.h"
 
 namespace globular {
 namespace {
@@ -56,7 +56,8 @@ TEST(SplatKernel, EveryBuildGivesTheSameBits) {
             for (SimdPath path : supportedSimdPaths()) {
                 const std::vector<float> other = splatBlocks(path, bins, g, kernel, means);
                 ASSERT_EQ(other.size(), scalar.size());
-                EXPECT_EQ(std::memcmp(other.data(), scalar.data(), scalar.size() * sizeof(float)), 0)
+                EXPECT_EQ(std::memcmp(other.data(), scalar.data(), scalar.size() * sizeof(float)),
+                          0)
                     << simdPathName(path) << " kernel " << int(type) << " means " << means;
             }
         }
