@@ -58,19 +58,28 @@ std::vector<LeafBits> masksOf(const std::set<Coord>& voxels, const LeafSet& leav
     return masks;
 }
 
-/// Calls check(voxel, bit) for every voxel of the set's leaves.
-template <typename Check>
-void forEveryVoxel(const LeafSet& leaves, const std::vector<LeafBits>& masks, Check&& check) {
+/// How @p masks (over @p leaves) compare with @p expected(voxel) on every voxel of the
+/// leaves: the voxels set, and those where the two differ.
+struct Agreement {
+    std::size_t on = 0, wrong = 0;
+};
+
+template <typename Expected>
+Agreement compare(const LeafSet& leaves, const std::vector<LeafBits>& masks, Expected&& expected) {
+    Agreement result;
     for (std::size_t i = 0; i < leaves.size(); ++i) {
         for (int x = 0; x < 8; ++x) {
             for (int y = 0; y < 8; ++y) {
                 for (int z = 0; z < 8; ++z) {
                     const Coord v = leaves.origin(i).offsetBy(x, y, z);
-                    check(v, masks[i].test(voxelIndex(v)));
+                    const bool bit = masks[i].test(voxelIndex(v));
+                    result.on += bit;
+                    result.wrong += bit != expected(v);
                 }
             }
         }
     }
+    return result;
 }
 
 TEST(LeafMasks, SetIsSortedWithoutDuplicatesAndFindsItsLeaves) {
@@ -99,22 +108,20 @@ TEST(LeafMasks, InterfaceIsTheVoxelsWithAFaceNeighbourOnTheOtherSide) {
         const LeafSet leaves = leavesAround(inside, 1);
         const std::vector<LeafBits> interface =
             interfaceOf(masksOf(inside, leaves), leaves.faces());
-        std::size_t on = 0, wrong = 0;
-        forEveryVoxel(leaves, interface, [&](const Coord& v, bool bit) {
+        const Agreement a = compare(leaves, interface, [&](const Coord& v) {
             const bool in = inside.count(v) > 0;
             bool differs = false;
-            for (int a = 0; a < 3; ++a) {
+            for (int axis = 0; axis < 3; ++axis) {
                 for (int side : {-1, 1}) {
                     Coord n = v;
-                    n[a] += side;
+                    n[axis] += side;
                     differs |= (inside.count(n) > 0) != in;
                 }
             }
-            on += bit;
-            wrong += bit != differs;
+            return differs;
         });
-        EXPECT_GT(on, 100u) << chance;
-        EXPECT_EQ(wrong, 0u) << chance;
+        EXPECT_GT(a.on, 100u) << chance;
+        EXPECT_EQ(a.wrong, 0u) << chance;
     }
 }
 
@@ -124,8 +131,7 @@ TEST(LeafMasks, DilationByOneVoxelTakesAll26Neighbours) {
         const LeafSet leaves = leavesAround(voxels, 1);
         const std::vector<LeafBits> grown =
             dilateByOneVoxel(masksOf(voxels, leaves), leaves.faces());
-        std::size_t on = 0, wrong = 0;
-        forEveryVoxel(leaves, grown, [&](const Coord& v, bool bit) {
+        const Agreement a = compare(leaves, grown, [&](const Coord& v) {
             bool near = false;
             for (int dx = -1; dx <= 1; ++dx) {
                 for (int dy = -1; dy <= 1; ++dy) {
@@ -133,11 +139,10 @@ TEST(LeafMasks, DilationByOneVoxelTakesAll26Neighbours) {
                         near |= voxels.count(v.offsetBy(dx, dy, dz)) > 0;
                 }
             }
-            on += bit;
-            wrong += bit != near;
+            return near;
         });
-        EXPECT_GT(on, voxels.size()) << chance;
-        EXPECT_EQ(wrong, 0u) << chance;
+        EXPECT_GT(a.on, voxels.size()) << chance;
+        EXPECT_EQ(a.wrong, 0u) << chance;
     }
 }
 
