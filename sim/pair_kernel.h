@@ -9,7 +9,9 @@
 // The grid hands about five candidates for each one within reach, so testing them cheaply
 // and evaluating the force only for the rest is what makes the loop fast. With AVX-512
 // the passes use 16 lanes (compress for the compaction, rsqrt14 + one Newton step for
-// 1/D); elsewhere they are plain loops that give the same neighbours in the same order.
+// 1/D); with AVX2 8 lanes (a table-driven permutation for the compaction, simd_lanes.h,
+// and rsqrt + one Newton step); elsewhere they are plain loops. Every build gives the
+// same neighbours in the same order.
 // The arithmetic is PairForce::accumulate's, to single-precision rounding.
 
 #include <cmath>
@@ -103,6 +105,14 @@ inline __mmask16 materialMask(const uint8_t* material, uint32_t left, uint8_t wa
     return mask;
 #endif
 }
+#elif defined(__AVX2__)
+/// The lanes among the first @p left (at most 8 used) whose material is @p want, as a
+/// movemask.
+inline unsigned materialMask8(const uint8_t* material, uint32_t left, uint8_t want) {
+    unsigned mask = 0;
+    for (uint32_t l = 0; l < 8 && l < left; ++l) mask |= unsigned(material[l] == want) << l;
+    return mask;
+}
 #endif
 
 /// Appends to @p out the globules j in [begin, end) of @p s within @p reach of the box
@@ -136,6 +146,40 @@ inline void collectGroupCandidates(const GlobuleArrays& s, uint32_t begin, uint3
         keepFrom(out.vz, s.vz);
         if (!out.uniformRadius) keepFrom(out.radius, s.radius);
         if (s.temperature) keepFrom(out.temperature, s.temperature);
+        count += uint32_t(__builtin_popcount(near));
+    }
+#elif defined(__AVX2__)
+    const __m256 reach2v = _mm256_set1_ps(reach2), zero = _mm256_setzero_ps();
+    const __m256 low[3] = {_mm256_set1_ps(lo[0]), _mm256_set1_ps(lo[1]), _mm256_set1_ps(lo[2])};
+    const __m256 high[3] = {_mm256_set1_ps(hi[0]), _mm256_set1_ps(hi[1]), _mm256_set1_ps(hi[2])};
+    for (uint32_t j = begin; j < end; j += 8) {
+        // The globule arrays have no padding: the last step's loads are masked.
+        const uint32_t left = end - j;
+        const __m256i live = firstLanes8(left);
+        const auto load = [&](const float* from) {
+            return left >= 8 ? _mm256_loadu_ps(from + j) : _mm256_maskload_ps(from + j, live);
+        };
+        const auto outside = [&](__m256 v, int axis) {  // distance from the box along an axis
+            return _mm256_max_ps(zero, _mm256_max_ps(_mm256_sub_ps(low[axis], v),
+                                                     _mm256_sub_ps(v, high[axis])));
+        };
+        const __m256 x = load(s.x), y = load(s.y), z = load(s.z);
+        const __m256 ex = outside(x, 0), ey = outside(y, 1), ez = outside(z, 2);
+        const __m256 d2 = _mm256_fmadd_ps(ez, ez, _mm256_fmadd_ps(ey, ey, _mm256_mul_ps(ex, ex)));
+        unsigned near = unsigned(_mm256_movemask_ps(
+            _mm256_and_ps(_mm256_cmp_ps(d2, reach2v, _CMP_LE_OQ), _mm256_castsi256_ps(live))));
+        if (material) near &= materialMask8(material + j, left, want);
+        const auto keep = [&](std::vector<float>& to, __m256 v) {
+            _mm256_storeu_ps(to.data() + count, leftPack(v, near));
+        };
+        keep(out.x, x);
+        keep(out.y, y);
+        keep(out.z, z);
+        keep(out.vx, load(s.vx));
+        keep(out.vy, load(s.vy));
+        keep(out.vz, load(s.vz));
+        if (!out.uniformRadius) keep(out.radius, load(s.radius));
+        if (s.temperature) keep(out.temperature, load(s.temperature));
         count += uint32_t(__builtin_popcount(near));
     }
 #else
@@ -282,6 +326,50 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
         count += uint32_t(__builtin_popcount(near));
     }
     if constexpr (Thermal) thermal->heat = thermal->conductance * _mm512_reduce_add_ps(heat);
+#elif defined(__AVX2__)
+    const __m256 px = _mm256_set1_ps(x), py = _mm256_set1_ps(y), pz = _mm256_set1_ps(z);
+    const __m256 pvx = _mm256_set1_ps(vx), pvy = _mm256_set1_ps(vy), pvz = _mm256_set1_ps(vz);
+    const __m256 pr = _mm256_set1_ps(r), reach2v = _mm256_set1_ps(reach2);
+    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1);
+    __m256 heat = zero, ti = zero, uniformInvLimit = zero;
+    if constexpr (Thermal) {
+        ti = _mm256_set1_ps(thermal->temperature);
+        uniformInvLimit = _mm256_set1_ps(1.0f / ((r + r) * (r + r) * reach2));  // 1 / limit
+    }
+    for (uint32_t j = 0; j < end; j += 8) {
+        // The padding past count is readable: plain loads, and a masked test.
+        const __m256 live = _mm256_castsi256_ps(firstLanes8(end - j));
+        const __m256 dx = _mm256_sub_ps(px, _mm256_loadu_ps(cx + j));
+        const __m256 dy = _mm256_sub_ps(py, _mm256_loadu_ps(cy + j));
+        const __m256 dz = _mm256_sub_ps(pz, _mm256_loadu_ps(cz + j));
+        const __m256 d2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
+        const __m256 sum =
+            _mm256_add_ps(pr, uniformRadius ? pr : _mm256_loadu_ps(cr + j));
+        const __m256 limit = _mm256_mul_ps(_mm256_mul_ps(sum, sum), reach2v);
+        const __m256 nearLanes = _mm256_and_ps(
+            live, _mm256_and_ps(_mm256_cmp_ps(d2, limit, _CMP_LT_OQ),
+                                _mm256_cmp_ps(d2, zero, _CMP_GT_OQ)));
+        const unsigned near = unsigned(_mm256_movemask_ps(nearLanes));
+        const auto keep = [&](float* to, __m256 v) { _mm256_storeu_ps(to + count, leftPack(v, near)); };
+        keep(bx, dx);
+        keep(by, dy);
+        keep(bz, dz);
+        const __m256 dvx = _mm256_sub_ps(pvx, _mm256_loadu_ps(cvx + j));
+        const __m256 dvy = _mm256_sub_ps(pvy, _mm256_loadu_ps(cvy + j));
+        const __m256 dvz = _mm256_sub_ps(pvz, _mm256_loadu_ps(cvz + j));
+        keep(bvp, _mm256_fmadd_ps(dvz, dz, _mm256_fmadd_ps(dvy, dy, _mm256_mul_ps(dvx, dx))));
+        if (!uniformRadius) keep(bsum, sum);
+        if constexpr (Thermal) {
+            const __m256 tj = _mm256_loadu_ps(ct + j);
+            if (keepTemperature) keep(bt, tj);
+            // Division, not an estimate: w_ij must equal w_ji bit for bit.
+            const __m256 invLimit = uniformRadius ? uniformInvLimit : _mm256_div_ps(one, limit);
+            const __m256 w = _mm256_fnmadd_ps(d2, invLimit, one);
+            heat = _mm256_blendv_ps(heat, _mm256_fmadd_ps(w, _mm256_sub_ps(tj, ti), heat), nearLanes);
+        }
+        count += uint32_t(__builtin_popcount(near));
+    }
+    if constexpr (Thermal) thermal->heat = thermal->conductance * sumLanes(heat);
 #else
     float heat = 0;
     for (uint32_t j = 0; j < end; ++j) {
@@ -367,6 +455,50 @@ inline __m512 pairScale(__m512 d2, __m512 invSum2, __m512 minD2, __m512 b1, __m5
 }
 #endif
 
+#if defined(__AVX2__)
+// The same three for 8 lanes. AVX2's estimates are coarser (12 bits, not 14): one Newton
+// step still leaves them within a few units in the last place.
+
+/// x^K by squaring (K >= 1).
+template <int K>
+inline __m256 intPow(__m256 x) {
+    if constexpr (K == 1) {
+        return x;
+    } else if constexpr (K % 2 == 0) {
+        const __m256 root = intPow<K / 2>(x);
+        return _mm256_mul_ps(root, root);
+    } else {
+        return _mm256_mul_ps(x, intPow<K - 1>(x));
+    }
+}
+
+inline void radiusSumTerms(__m256 sum, __m256& invSum2, __m256& minD2) {
+    const __m256 sum2 = _mm256_mul_ps(sum, sum);
+    invSum2 = _mm256_rcp_ps(sum2);
+    invSum2 = _mm256_mul_ps(invSum2, _mm256_fnmadd_ps(sum2, invSum2, _mm256_set1_ps(2)));
+    minD2 = _mm256_mul_ps(_mm256_set1_ps(kMinDistanceFraction * kMinDistanceFraction), sum2);
+}
+
+template <int M, int N>
+inline __m256 pairScale(__m256 d2, __m256 invSum2, __m256 minD2, __m256 b1, __m256 b2,
+                        __m256 cr2, __m256 cd2, __m256 vDotP) {
+    const __m256 one = _mm256_set1_ps(1), zero = _mm256_setzero_ps();
+    const __m256 safeD2 = _mm256_max_ps(d2, minD2);
+    __m256 invD = _mm256_rsqrt_ps(safeD2);
+    invD = _mm256_mul_ps(invD, _mm256_fnmadd_ps(_mm256_mul_ps(_mm256_set1_ps(0.5f), safeD2),
+                                                _mm256_mul_ps(invD, invD), _mm256_set1_ps(1.5f)));
+    const __m256 relative = _mm256_mul_ps(d2, invSum2);
+    const __m256 windowR = _mm256_max_ps(zero, _mm256_fnmadd_ps(relative, cr2, one));
+    const __m256 windowD = _mm256_max_ps(zero, _mm256_fnmadd_ps(relative, cd2, one));
+    const __m256 powN = intPow<N>(invD);
+    const __m256 powM = M > N ? _mm256_mul_ps(powN, intPow<(M > N ? M - N : 1)>(invD))
+                              : intPow<M>(invD);
+    const __m256 radial = _mm256_fmsub_ps(b1, powM, _mm256_mul_ps(b2, powN));
+    const __m256 drag = _mm256_mul_ps(_mm256_mul_ps(windowD, vDotP), _mm256_mul_ps(invD, invD));
+    return _mm256_fmsub_ps(windowR, radial, drag);
+}
+#endif
+
 /// Adds to (fx, fy, fz) the force of eq. (2) from every neighbour in @p batch.
 template <int M, int N>
 inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, float& fy,
@@ -415,6 +547,46 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
         fx += _mm512_reduce_add_ps(ax);
         fy += _mm512_reduce_add_ps(ay);
         fz += _mm512_reduce_add_ps(az);
+        return;
+    }
+#elif defined(__AVX2__)
+    if constexpr (M > 0 && N > 0) {
+        const __m256 one = _mm256_set1_ps(1), zero = _mm256_setzero_ps();
+        const __m256 cr2 = _mm256_set1_ps(invCr2), cd2 = _mm256_set1_ps(invCd2);
+        const __m256 b1 = _mm256_set1_ps(p.b1), b2 = _mm256_set1_ps(p.b2);
+        const float fixedSum2 = batch.uniformSum * batch.uniformSum;
+        const __m256 fixedInvSum2 = _mm256_set1_ps(uniform ? 1.0f / fixedSum2 : 0.0f);
+        const __m256 fixedMinD2 = _mm256_set1_ps(minFraction2 * fixedSum2);
+        __m256 ax = zero, ay = zero, az = zero;
+        const auto sumAll = [&]<bool Uniform>() {
+            for (uint32_t k = 0; k < count; k += 8) {
+                // Past count the batch holds stale but readable entries: the sums leave
+                // those lanes out.
+                const __m256 live = _mm256_castsi256_ps(firstLanes8(count - k));
+                const __m256 dx = _mm256_loadu_ps(bx + k);
+                const __m256 dy = _mm256_loadu_ps(by + k);
+                const __m256 dz = _mm256_loadu_ps(bz + k);
+                __m256 invSum2 = fixedInvSum2, minD2 = fixedMinD2;
+                if constexpr (!Uniform) {
+                    radiusSumTerms(_mm256_blendv_ps(one, _mm256_loadu_ps(bsum + k), live),
+                                   invSum2, minD2);
+                }
+                const __m256 d2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
+                const __m256 scale = pairScale<M, N>(d2, invSum2, minD2, b1, b2, cr2, cd2,
+                                                     _mm256_loadu_ps(bvp + k));
+                ax = _mm256_blendv_ps(ax, _mm256_fmadd_ps(scale, dx, ax), live);
+                ay = _mm256_blendv_ps(ay, _mm256_fmadd_ps(scale, dy, ay), live);
+                az = _mm256_blendv_ps(az, _mm256_fmadd_ps(scale, dz, az), live);
+            }
+        };
+        if (uniform) {
+            sumAll.template operator()<true>();
+        } else {
+            sumAll.template operator()<false>();
+        }
+        fx += sumLanes(ax);
+        fy += sumLanes(ay);
+        fz += sumLanes(az);
         return;
     }
 #endif
