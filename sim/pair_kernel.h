@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "pair_force.h"
@@ -109,9 +110,12 @@ inline __mmask16 materialMask(const uint8_t* material, uint32_t left, uint8_t wa
 /// The lanes among the first @p left (at most 8 used) whose material is @p want, as a
 /// movemask.
 inline unsigned materialMask8(const uint8_t* material, uint32_t left, uint8_t want) {
-    unsigned mask = 0;
-    for (uint32_t l = 0; l < 8 && l < left; ++l) mask |= unsigned(material[l] == want) << l;
-    return mask;
+    int64_t bytes = 0;
+    std::memcpy(&bytes, material, left >= 8 ? 8 : left);
+    const __m256i m = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(bytes));
+    const __m256i same = _mm256_cmpeq_epi32(m, _mm256_set1_epi32(want));
+    const unsigned lanes = left >= 8 ? 0xFFu : (1u << left) - 1;
+    return unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(same))) & lanes;
 }
 #endif
 
@@ -241,6 +245,46 @@ inline void collectGroupCandidatesByMaterial(const GlobuleArrays& s, uint32_t be
             c.count += uint32_t(__builtin_popcount(mine));
         }
     }
+#elif defined(__AVX2__)
+    const __m256 reach2v = _mm256_set1_ps(reach * reach), zero = _mm256_setzero_ps();
+    const __m256 low[3] = {_mm256_set1_ps(lo[0]), _mm256_set1_ps(lo[1]), _mm256_set1_ps(lo[2])};
+    const __m256 high[3] = {_mm256_set1_ps(hi[0]), _mm256_set1_ps(hi[1]), _mm256_set1_ps(hi[2])};
+    for (uint32_t j = begin; j < end; j += 8) {
+        const uint32_t left = end - j;
+        const __m256i live = firstLanes8(left);
+        const auto load = [&](const float* from) {
+            return left >= 8 ? _mm256_loadu_ps(from + j) : _mm256_maskload_ps(from + j, live);
+        };
+        const auto outside = [&](__m256 v, int axis) {
+            return _mm256_max_ps(zero, _mm256_max_ps(_mm256_sub_ps(low[axis], v),
+                                                     _mm256_sub_ps(v, high[axis])));
+        };
+        const __m256 x = load(s.x), y = load(s.y), z = load(s.z);
+        const __m256 ex = outside(x, 0), ey = outside(y, 1), ez = outside(z, 2);
+        const __m256 d2 = _mm256_fmadd_ps(ez, ez, _mm256_fmadd_ps(ey, ey, _mm256_mul_ps(ex, ex)));
+        const unsigned near = unsigned(_mm256_movemask_ps(
+            _mm256_and_ps(_mm256_cmp_ps(d2, reach2v, _CMP_LE_OQ), _mm256_castsi256_ps(live))));
+        if (!near) continue;
+        const __m256 vx = load(s.vx), vy = load(s.vy), vz = load(s.vz), r = load(s.radius);
+        const __m256 t = s.temperature ? load(s.temperature) : r;
+        for (std::size_t kind = 0; kind < out.size(); ++kind) {
+            const unsigned mine = near & materialMask8(material + j, left, uint8_t(kind));
+            if (!mine) continue;
+            GroupCandidates& c = out[kind];
+            const auto keep = [&](std::vector<float>& to, __m256 v) {
+                _mm256_storeu_ps(to.data() + c.count, leftPack(v, mine));
+            };
+            keep(c.x, x);
+            keep(c.y, y);
+            keep(c.z, z);
+            keep(c.vx, vx);
+            keep(c.vy, vy);
+            keep(c.vz, vz);
+            if (!c.uniformRadius) keep(c.radius, r);
+            if (s.temperature) keep(c.temperature, t);
+            c.count += uint32_t(__builtin_popcount(mine));
+        }
+    }
 #else
     for (std::size_t kind = 0; kind < out.size(); ++kind) {
         collectGroupCandidates(s, begin, end, lo, hi, reach, out[kind], material, uint8_t(kind));
@@ -350,7 +394,9 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
             live, _mm256_and_ps(_mm256_cmp_ps(d2, limit, _CMP_LT_OQ),
                                 _mm256_cmp_ps(d2, zero, _CMP_GT_OQ)));
         const unsigned near = unsigned(_mm256_movemask_ps(nearLanes));
-        const auto keep = [&](float* to, __m256 v) { _mm256_storeu_ps(to + count, leftPack(v, near)); };
+        const auto keep = [&](float* to, __m256 v) {
+            _mm256_storeu_ps(to + count, leftPack(v, near));
+        };
         keep(bx, dx);
         keep(by, dy);
         keep(bz, dz);
@@ -365,7 +411,8 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
             // Division, not an estimate: w_ij must equal w_ji bit for bit.
             const __m256 invLimit = uniformRadius ? uniformInvLimit : _mm256_div_ps(one, limit);
             const __m256 w = _mm256_fnmadd_ps(d2, invLimit, one);
-            heat = _mm256_blendv_ps(heat, _mm256_fmadd_ps(w, _mm256_sub_ps(tj, ti), heat), nearLanes);
+            const __m256 added = _mm256_fmadd_ps(w, _mm256_sub_ps(tj, ti), heat);
+            heat = _mm256_blendv_ps(heat, added, nearLanes);
         }
         count += uint32_t(__builtin_popcount(near));
     }
@@ -571,7 +618,8 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
                     radiusSumTerms(_mm256_blendv_ps(one, _mm256_loadu_ps(bsum + k), live),
                                    invSum2, minD2);
                 }
-                const __m256 d2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
+                const __m256 d2 =
+                    _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
                 const __m256 scale = pairScale<M, N>(d2, invSum2, minD2, b1, b2, cr2, cd2,
                                                      _mm256_loadu_ps(bvp + k));
                 ax = _mm256_blendv_ps(ax, _mm256_fmadd_ps(scale, dx, ax), live);
