@@ -53,6 +53,27 @@ inline std::pair<float, float> temperatureRange(const float* t, uint32_t count) 
         hi = _mm512_max_ps(hi, v);
     }
     return {_mm512_reduce_min_ps(lo), _mm512_reduce_max_ps(hi)};
+#elif defined(__AVX2__)
+    __m256 lo = _mm256_set1_ps(t[0]), hi = lo;
+    uint32_t k = 0;
+    for (; k + 8 <= count; k += 8) {
+        const __m256 v = _mm256_loadu_ps(t + k);
+        lo = _mm256_min_ps(lo, v);
+        hi = _mm256_max_ps(hi, v);
+    }
+    alignas(32) float low[8], high[8];
+    _mm256_store_ps(low, lo);
+    _mm256_store_ps(high, hi);
+    float a = low[0], b = high[0];
+    for (int l = 1; l < 8; ++l) {
+        a = std::min(a, low[l]);
+        b = std::max(b, high[l]);
+    }
+    for (; k < count; ++k) {
+        a = std::min(a, t[k]);
+        b = std::max(b, t[k]);
+    }
+    return {a, b};
 #else
     float lo = t[0], hi = t[0];
     for (uint32_t k = 1; k < count; ++k) {
