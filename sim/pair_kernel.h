@@ -456,94 +456,126 @@ inline float radialTerm(const PairForce& p, float invD, float distance) {
     }
 }
 
-#if defined(__AVX512F__)
-/// x^K by squaring (K >= 1): x^5 = x (x^2)^2, three multiplications.
-template <int K>
-inline __m512 intPow(__m512 x) {
-    if constexpr (K == 1) {
-        return x;
-    } else if constexpr (K % 2 == 0) {
-        const __m512 root = intPow<K / 2>(x);
-        return _mm512_mul_ps(root, root);
-    } else {
-        return _mm512_mul_ps(x, intPow<K - 1>(x));
-    }
-}
-
-/// 1 / (r_i + r_j)^2 and the smallest squared distance the force takes, for 16 radius
-/// sums @p sum.
-inline void radiusSumTerms(__m512 sum, __m512& invSum2, __m512& minD2) {
-    const __m512 sum2 = _mm512_mul_ps(sum, sum);
-    invSum2 = _mm512_rcp14_ps(sum2);  // one Newton step: ~full precision
-    invSum2 = _mm512_mul_ps(invSum2, _mm512_fnmadd_ps(sum2, invSum2, _mm512_set1_ps(2)));
-    minD2 = _mm512_mul_ps(_mm512_set1_ps(kMinDistanceFraction * kMinDistanceFraction), sum2);
-}
-
-/// What eq. (2)-(5) multiply P by, for 16 pairs: @p d2 = |P|^2 (taken as @p minD2 where
-/// smaller), @p invSum2 = 1 / (r_i + r_j)^2, the constants b1, b2, 1/C_r^2 (@p cr2) and
-/// 1/C_d^2 (@p cd2), and V.P. 1/D from rsqrt14 and one Newton step: no divisions.
-template <int M, int N>
-inline __m512 pairScale(__m512 d2, __m512 invSum2, __m512 minD2, __m512 b1, __m512 b2,
-                        __m512 cr2, __m512 cd2, __m512 vDotP) {
-    const __m512 one = _mm512_set1_ps(1), zero = _mm512_setzero_ps();
-    const __m512 safeD2 = _mm512_max_ps(d2, minD2);
-    __m512 invD = _mm512_rsqrt14_ps(safeD2);
-    invD = _mm512_mul_ps(invD, _mm512_fnmadd_ps(_mm512_mul_ps(_mm512_set1_ps(0.5f), safeD2),
-                                                _mm512_mul_ps(invD, invD), _mm512_set1_ps(1.5f)));
-    const __m512 relative = _mm512_mul_ps(d2, invSum2);
-    const __m512 windowR = _mm512_max_ps(zero, _mm512_fnmadd_ps(relative, cr2, one));
-    const __m512 windowD = _mm512_max_ps(zero, _mm512_fnmadd_ps(relative, cd2, one));
-    const __m512 powN = intPow<N>(invD);
-    const __m512 powM = M > N ? _mm512_mul_ps(powN, intPow<(M > N ? M - N : 1)>(invD))
-                              : intPow<M>(invD);
-    const __m512 radial = _mm512_fmsub_ps(b1, powM, _mm512_mul_ps(b2, powN));
-    const __m512 drag = _mm512_mul_ps(_mm512_mul_ps(windowD, vDotP), _mm512_mul_ps(invD, invD));
-    return _mm512_fmsub_ps(windowR, radial, drag);
-}
-#endif
-
 #if defined(__AVX2__)
-// The same three for 8 lanes. AVX2's estimates are coarser (12 bits, not 14): one Newton
-// step still leaves them within a few units in the last place.
+// The lane arithmetic that intPow, radiusSumTerms and pairScale need, once per vector
+// width, so that those are written once for AVX-512 (16 lanes) and AVX2 (8). The
+// estimates are AVX-512's 14-bit ones and AVX2's 12-bit ones; one Newton step leaves
+// either within a few units in the last place.
+#if defined(__AVX512F__)
+inline __m512 lanesMul(__m512 a, __m512 b) { return _mm512_mul_ps(a, b); }
+inline __m512 lanesMax(__m512 a, __m512 b) { return _mm512_max_ps(a, b); }
+inline __m512 lanesFnmadd(__m512 a, __m512 b, __m512 c) { return _mm512_fnmadd_ps(a, b, c); }
+inline __m512 lanesFmsub(__m512 a, __m512 b, __m512 c) { return _mm512_fmsub_ps(a, b, c); }
+inline __m512 lanesRsqrtEstimate(__m512 a) { return _mm512_rsqrt14_ps(a); }
+inline __m512 lanesRcpEstimate(__m512 a) { return _mm512_rcp14_ps(a); }
+inline __m512 lanesSplat(__m512 /*width*/, float v) { return _mm512_set1_ps(v); }
+inline __m512 lanesZero(__m512 /*width*/) { return _mm512_setzero_ps(); }
+#endif
+inline __m256 lanesMul(__m256 a, __m256 b) { return _mm256_mul_ps(a, b); }
+inline __m256 lanesMax(__m256 a, __m256 b) { return _mm256_max_ps(a, b); }
+inline __m256 lanesFnmadd(__m256 a, __m256 b, __m256 c) { return _mm256_fnmadd_ps(a, b, c); }
+inline __m256 lanesFmsub(__m256 a, __m256 b, __m256 c) { return _mm256_fmsub_ps(a, b, c); }
+inline __m256 lanesRsqrtEstimate(__m256 a) { return _mm256_rsqrt_ps(a); }
+inline __m256 lanesRcpEstimate(__m256 a) { return _mm256_rcp_ps(a); }
+inline __m256 lanesSplat(__m256 /*width*/, float v) { return _mm256_set1_ps(v); }
+inline __m256 lanesZero(__m256 /*width*/) { return _mm256_setzero_ps(); }
 
-/// x^K by squaring (K >= 1).
-template <int K>
-inline __m256 intPow(__m256 x) {
+/// x^K by squaring (K >= 1): x^5 = x (x^2)^2, three multiplications.
+template <int K, typename Lanes>
+inline Lanes intPow(Lanes x) {
     if constexpr (K == 1) {
         return x;
     } else if constexpr (K % 2 == 0) {
-        const __m256 root = intPow<K / 2>(x);
-        return _mm256_mul_ps(root, root);
+        const Lanes root = intPow<K / 2>(x);
+        return lanesMul(root, root);
     } else {
-        return _mm256_mul_ps(x, intPow<K - 1>(x));
+        return lanesMul(x, intPow<K - 1>(x));
     }
 }
 
-inline void radiusSumTerms(__m256 sum, __m256& invSum2, __m256& minD2) {
-    const __m256 sum2 = _mm256_mul_ps(sum, sum);
-    invSum2 = _mm256_rcp_ps(sum2);
-    invSum2 = _mm256_mul_ps(invSum2, _mm256_fnmadd_ps(sum2, invSum2, _mm256_set1_ps(2)));
-    minD2 = _mm256_mul_ps(_mm256_set1_ps(kMinDistanceFraction * kMinDistanceFraction), sum2);
+/// 1 / (r_i + r_j)^2 and the smallest squared distance the force takes, for the radius
+/// sums @p sum.
+template <typename Lanes>
+inline void radiusSumTerms(Lanes sum, Lanes& invSum2, Lanes& minD2) {
+    const Lanes sum2 = lanesMul(sum, sum);
+    invSum2 = lanesRcpEstimate(sum2);  // and one Newton step
+    invSum2 = lanesMul(invSum2, lanesFnmadd(sum2, invSum2, lanesSplat(sum, 2)));
+    minD2 = lanesMul(lanesSplat(sum, kMinDistanceFraction * kMinDistanceFraction), sum2);
 }
 
-template <int M, int N>
-inline __m256 pairScale(__m256 d2, __m256 invSum2, __m256 minD2, __m256 b1, __m256 b2,
-                        __m256 cr2, __m256 cd2, __m256 vDotP) {
-    const __m256 one = _mm256_set1_ps(1), zero = _mm256_setzero_ps();
-    const __m256 safeD2 = _mm256_max_ps(d2, minD2);
-    __m256 invD = _mm256_rsqrt_ps(safeD2);
-    invD = _mm256_mul_ps(invD, _mm256_fnmadd_ps(_mm256_mul_ps(_mm256_set1_ps(0.5f), safeD2),
-                                                _mm256_mul_ps(invD, invD), _mm256_set1_ps(1.5f)));
-    const __m256 relative = _mm256_mul_ps(d2, invSum2);
-    const __m256 windowR = _mm256_max_ps(zero, _mm256_fnmadd_ps(relative, cr2, one));
-    const __m256 windowD = _mm256_max_ps(zero, _mm256_fnmadd_ps(relative, cd2, one));
-    const __m256 powN = intPow<N>(invD);
-    const __m256 powM = M > N ? _mm256_mul_ps(powN, intPow<(M > N ? M - N : 1)>(invD))
-                              : intPow<M>(invD);
-    const __m256 radial = _mm256_fmsub_ps(b1, powM, _mm256_mul_ps(b2, powN));
-    const __m256 drag = _mm256_mul_ps(_mm256_mul_ps(windowD, vDotP), _mm256_mul_ps(invD, invD));
-    return _mm256_fmsub_ps(windowR, radial, drag);
+/// What eq. (2)-(5) multiply P by, lane by lane: @p d2 = |P|^2 (taken as @p minD2 where
+/// smaller), @p invSum2 = 1 / (r_i + r_j)^2, the constants b1, b2, 1/C_r^2 (@p cr2) and
+/// 1/C_d^2 (@p cd2), and V.P. 1/D from the estimate and one Newton step: no divisions.
+template <int M, int N, typename Lanes>
+inline Lanes pairScale(Lanes d2, Lanes invSum2, Lanes minD2, Lanes b1, Lanes b2, Lanes cr2,
+                       Lanes cd2, Lanes vDotP) {
+    const Lanes one = lanesSplat(d2, 1), zero = lanesZero(d2);
+    const Lanes safeD2 = lanesMax(d2, minD2);
+    Lanes invD = lanesRsqrtEstimate(safeD2);
+    invD = lanesMul(invD, lanesFnmadd(lanesMul(lanesSplat(d2, 0.5f), safeD2),
+                                      lanesMul(invD, invD), lanesSplat(d2, 1.5f)));
+    const Lanes relative = lanesMul(d2, invSum2);
+    const Lanes windowR = lanesMax(zero, lanesFnmadd(relative, cr2, one));
+    const Lanes windowD = lanesMax(zero, lanesFnmadd(relative, cd2, one));
+    const Lanes powN = intPow<N>(invD);
+    const Lanes powM =
+        M > N ? lanesMul(powN, intPow<(M > N ? M - N : 1)>(invD)) : intPow<M>(invD);
+    const Lanes radial = lanesFmsub(b1, powM, lanesMul(b2, powN));
+    const Lanes drag = lanesMul(lanesMul(windowD, vDotP), lanesMul(invD, invD));
+    return lanesFmsub(windowR, radial, drag);
 }
+
+/// A NeighborBatch 8 lanes at a time, for the AVX2 force sums (sumBatch, sumBlendedBatch):
+/// each block's P, |P|^2 and radius terms, and the sum of scale * P over the live lanes.
+/// Past count the batch holds stale but readable entries: the sum leaves those lanes out.
+class BatchLanes {
+public:
+    struct Block {
+        __m256 live, dx, dy, dz, d2, invSum2, minD2;
+    };
+
+    explicit BatchLanes(const NeighborBatch& batch) : mBatch(batch) {
+        const float sum2 = batch.uniformSum * batch.uniformSum;
+        mUniformInvSum2 = _mm256_set1_ps(batch.uniformSum > 0 ? 1.0f / sum2 : 0.0f);
+        mUniformMinD2 = _mm256_set1_ps(kMinDistanceFraction * kMinDistanceFraction * sum2);
+    }
+
+    /// Entries [k, k + 8); @p uniform: the batch's uniformSum holds every r_i + r_j.
+    Block load(uint32_t k, bool uniform) const {
+        Block b;
+        b.live = _mm256_castsi256_ps(firstLanes8(mBatch.count - k));
+        b.dx = _mm256_loadu_ps(mBatch.dx.data() + k);
+        b.dy = _mm256_loadu_ps(mBatch.dy.data() + k);
+        b.dz = _mm256_loadu_ps(mBatch.dz.data() + k);
+        b.d2 = _mm256_fmadd_ps(b.dz, b.dz, _mm256_fmadd_ps(b.dy, b.dy, _mm256_mul_ps(b.dx, b.dx)));
+        b.invSum2 = mUniformInvSum2;
+        b.minD2 = mUniformMinD2;
+        if (!uniform) {
+            const __m256 sum = _mm256_loadu_ps(mBatch.radiusSum.data() + k);
+            radiusSumTerms(_mm256_blendv_ps(_mm256_set1_ps(1), sum, b.live), b.invSum2, b.minD2);
+        }
+        return b;
+    }
+
+    /// Adds @p scale * P of @p b's live lanes.
+    void add(const Block& b, __m256 scale) {
+        mX = _mm256_blendv_ps(mX, _mm256_fmadd_ps(scale, b.dx, mX), b.live);
+        mY = _mm256_blendv_ps(mY, _mm256_fmadd_ps(scale, b.dy, mY), b.live);
+        mZ = _mm256_blendv_ps(mZ, _mm256_fmadd_ps(scale, b.dz, mZ), b.live);
+    }
+
+    /// Adds the sums to (fx, fy, fz).
+    void addTo(float& fx, float& fy, float& fz) const {
+        fx += sumLanes(mX);
+        fy += sumLanes(mY);
+        fz += sumLanes(mZ);
+    }
+
+private:
+    const NeighborBatch& mBatch;
+    __m256 mUniformInvSum2, mUniformMinD2;
+    __m256 mX = _mm256_setzero_ps(), mY = _mm256_setzero_ps(), mZ = _mm256_setzero_ps();
+};
 #endif
 
 /// Adds to (fx, fy, fz) the force of eq. (2) from every neighbour in @p batch.
@@ -598,33 +630,15 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
     }
 #elif defined(__AVX2__)
     if constexpr (M > 0 && N > 0) {
-        const __m256 one = _mm256_set1_ps(1), zero = _mm256_setzero_ps();
         const __m256 cr2 = _mm256_set1_ps(invCr2), cd2 = _mm256_set1_ps(invCd2);
         const __m256 b1 = _mm256_set1_ps(p.b1), b2 = _mm256_set1_ps(p.b2);
-        const float fixedSum2 = batch.uniformSum * batch.uniformSum;
-        const __m256 fixedInvSum2 = _mm256_set1_ps(uniform ? 1.0f / fixedSum2 : 0.0f);
-        const __m256 fixedMinD2 = _mm256_set1_ps(minFraction2 * fixedSum2);
-        __m256 ax = zero, ay = zero, az = zero;
+        BatchLanes lanes(batch);
+        // Instantiated twice so that a uniform radius costs no per-pair work.
         const auto sumAll = [&]<bool Uniform>() {
             for (uint32_t k = 0; k < count; k += 8) {
-                // Past count the batch holds stale but readable entries: the sums leave
-                // those lanes out.
-                const __m256 live = _mm256_castsi256_ps(firstLanes8(count - k));
-                const __m256 dx = _mm256_loadu_ps(bx + k);
-                const __m256 dy = _mm256_loadu_ps(by + k);
-                const __m256 dz = _mm256_loadu_ps(bz + k);
-                __m256 invSum2 = fixedInvSum2, minD2 = fixedMinD2;
-                if constexpr (!Uniform) {
-                    radiusSumTerms(_mm256_blendv_ps(one, _mm256_loadu_ps(bsum + k), live),
-                                   invSum2, minD2);
-                }
-                const __m256 d2 =
-                    _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
-                const __m256 scale = pairScale<M, N>(d2, invSum2, minD2, b1, b2, cr2, cd2,
-                                                     _mm256_loadu_ps(bvp + k));
-                ax = _mm256_blendv_ps(ax, _mm256_fmadd_ps(scale, dx, ax), live);
-                ay = _mm256_blendv_ps(ay, _mm256_fmadd_ps(scale, dy, ay), live);
-                az = _mm256_blendv_ps(az, _mm256_fmadd_ps(scale, dz, az), live);
+                const BatchLanes::Block b = lanes.load(k, Uniform);
+                lanes.add(b, pairScale<M, N>(b.d2, b.invSum2, b.minD2, b1, b2, cr2, cd2,
+                                             _mm256_loadu_ps(bvp + k)));
             }
         };
         if (uniform) {
@@ -632,9 +646,7 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
         } else {
             sumAll.template operator()<false>();
         }
-        fx += sumLanes(ax);
-        fy += sumLanes(ay);
-        fz += sumLanes(az);
+        lanes.addTo(fx, fy, fz);
         return;
     }
 #endif

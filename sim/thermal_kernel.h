@@ -159,22 +159,9 @@ inline void sumBlendedBatch(const ThermalPair& pair, float ti, const NeighborBat
         const __m256 b1L = _mm256_set1_ps(liquid.b1), b2L = _mm256_set1_ps(liquid.b2);
         const __m256 cr2L = _mm256_set1_ps(1.0f / (liquid.cr * liquid.cr));
         const __m256 cd2L = _mm256_set1_ps(1.0f / (liquid.cd * liquid.cd));
-        const float fixedSum2 = batch.uniformSum * batch.uniformSum;
-        const __m256 fixedInvSum2 = _mm256_set1_ps(uniform ? 1.0f / fixedSum2 : 0.0f);
-        const __m256 fixedMinD2 = _mm256_set1_ps(minFraction2 * fixedSum2);
-        __m256 ax = zero, ay = zero, az = zero;
+        BatchLanes lanes(batch);
         for (uint32_t k = 0; k < count; k += 8) {
-            // Past count the batch holds stale but readable entries: the sums leave those
-            // lanes out.
-            const __m256 live = _mm256_castsi256_ps(firstLanes8(count - k));
-            const __m256 dx = _mm256_loadu_ps(bx + k);
-            const __m256 dy = _mm256_loadu_ps(by + k);
-            const __m256 dz = _mm256_loadu_ps(bz + k);
-            __m256 invSum2 = fixedInvSum2, minD2 = fixedMinD2;
-            if (!uniform) {
-                radiusSumTerms(_mm256_blendv_ps(one, _mm256_loadu_ps(bsum + k), live), invSum2,
-                               minD2);
-            }
+            const BatchLanes::Block b = lanes.load(k, uniform);
             // s: smoothstep of the pair's mean temperature; exactly 1 from T_liquid up.
             const __m256 t = _mm256_mul_ps(half, _mm256_add_ps(tI, _mm256_loadu_ps(bt + k)));
             __m256 x = _mm256_mul_ps(_mm256_sub_ps(t, tS), invRange);
@@ -182,21 +169,14 @@ inline void sumBlendedBatch(const ThermalPair& pair, float ti, const NeighborBat
             x = _mm256_blendv_ps(x, one, _mm256_cmp_ps(t, tL, _CMP_GE_OQ));
             const __m256 s = _mm256_mul_ps(_mm256_mul_ps(x, x), _mm256_fnmadd_ps(two, x, three));
             const __m256 r = _mm256_sub_ps(one, s);
-            const auto blend = [&](__m256 a, __m256 b) {
-                return _mm256_fmadd_ps(s, b, _mm256_mul_ps(r, a));
+            const auto blend = [&](__m256 a, __m256 c) {
+                return _mm256_fmadd_ps(s, c, _mm256_mul_ps(r, a));
             };
-            const __m256 d2 =
-                _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
-            const __m256 scale =
-                pairScale<M, N>(d2, invSum2, minD2, blend(b1S, b1L), blend(b2S, b2L),
-                                blend(cr2S, cr2L), blend(cd2S, cd2L), _mm256_loadu_ps(bvp + k));
-            ax = _mm256_blendv_ps(ax, _mm256_fmadd_ps(scale, dx, ax), live);
-            ay = _mm256_blendv_ps(ay, _mm256_fmadd_ps(scale, dy, ay), live);
-            az = _mm256_blendv_ps(az, _mm256_fmadd_ps(scale, dz, az), live);
+            lanes.add(b, pairScale<M, N>(b.d2, b.invSum2, b.minD2, blend(b1S, b1L),
+                                         blend(b2S, b2L), blend(cr2S, cr2L), blend(cd2S, cd2L),
+                                         _mm256_loadu_ps(bvp + k)));
         }
-        fx += sumLanes(ax);
-        fy += sumLanes(ay);
-        fz += sumLanes(az);
+        lanes.addTo(fx, fy, fz);
         return;
     }
 #endif
