@@ -107,6 +107,39 @@ inline __mmask16 materialMask(const uint8_t* material, uint32_t left, uint8_t wa
 #endif
 }
 #elif defined(__AVX2__)
+/// nearBox for eight globules: their positions, and which of the first @p left lie within
+/// reach of the box, as a movemask. The globule arrays have no padding: the last step's
+/// loads are masked (load).
+struct NearBox8 {
+    uint32_t j, left;
+    __m256i live;
+    __m256 x, y, z;
+    unsigned near;
+
+    /// Eight values of @p from at j; in the last step, those past the end are 0, not read.
+    __m256 load(const float* from) const {
+        return left >= 8 ? _mm256_loadu_ps(from + j) : _mm256_maskload_ps(from + j, live);
+    }
+};
+
+inline NearBox8 nearBox8(const GlobuleArrays& s, uint32_t j, uint32_t left, const float lo[3],
+                         const float hi[3], __m256 reach2) {
+    const __m256 zero = _mm256_setzero_ps();
+    const auto outside = [&](__m256 v, int axis) {  // distance from the box along an axis
+        return _mm256_max_ps(zero, _mm256_max_ps(_mm256_sub_ps(_mm256_set1_ps(lo[axis]), v),
+                                                 _mm256_sub_ps(v, _mm256_set1_ps(hi[axis]))));
+    };
+    NearBox8 b{j, left, firstLanes8(left), {}, {}, {}, 0};
+    b.x = b.load(s.x);
+    b.y = b.load(s.y);
+    b.z = b.load(s.z);
+    const __m256 ex = outside(b.x, 0), ey = outside(b.y, 1), ez = outside(b.z, 2);
+    const __m256 d2 = _mm256_fmadd_ps(ez, ez, _mm256_fmadd_ps(ey, ey, _mm256_mul_ps(ex, ex)));
+    b.near = unsigned(_mm256_movemask_ps(
+        _mm256_and_ps(_mm256_cmp_ps(d2, reach2, _CMP_LE_OQ), _mm256_castsi256_ps(b.live))));
+    return b;
+}
+
 /// The lanes among the first @p left (at most 8 used) whose material is @p want, as a
 /// movemask.
 inline unsigned materialMask8(const uint8_t* material, uint32_t left, uint8_t want) {
@@ -153,37 +186,23 @@ inline void collectGroupCandidates(const GlobuleArrays& s, uint32_t begin, uint3
         count += uint32_t(__builtin_popcount(near));
     }
 #elif defined(__AVX2__)
-    const __m256 reach2v = _mm256_set1_ps(reach2), zero = _mm256_setzero_ps();
-    const __m256 low[3] = {_mm256_set1_ps(lo[0]), _mm256_set1_ps(lo[1]), _mm256_set1_ps(lo[2])};
-    const __m256 high[3] = {_mm256_set1_ps(hi[0]), _mm256_set1_ps(hi[1]), _mm256_set1_ps(hi[2])};
+    const __m256 reach2v = _mm256_set1_ps(reach2);
     for (uint32_t j = begin; j < end; j += 8) {
-        // The globule arrays have no padding: the last step's loads are masked.
         const uint32_t left = end - j;
-        const __m256i live = firstLanes8(left);
-        const auto load = [&](const float* from) {
-            return left >= 8 ? _mm256_loadu_ps(from + j) : _mm256_maskload_ps(from + j, live);
-        };
-        const auto outside = [&](__m256 v, int axis) {  // distance from the box along an axis
-            return _mm256_max_ps(zero, _mm256_max_ps(_mm256_sub_ps(low[axis], v),
-                                                     _mm256_sub_ps(v, high[axis])));
-        };
-        const __m256 x = load(s.x), y = load(s.y), z = load(s.z);
-        const __m256 ex = outside(x, 0), ey = outside(y, 1), ez = outside(z, 2);
-        const __m256 d2 = _mm256_fmadd_ps(ez, ez, _mm256_fmadd_ps(ey, ey, _mm256_mul_ps(ex, ex)));
-        unsigned near = unsigned(_mm256_movemask_ps(
-            _mm256_and_ps(_mm256_cmp_ps(d2, reach2v, _CMP_LE_OQ), _mm256_castsi256_ps(live))));
+        const NearBox8 box = nearBox8(s, j, left, lo, hi, reach2v);
+        unsigned near = box.near;
         if (material) near &= materialMask8(material + j, left, want);
         const auto keep = [&](std::vector<float>& to, __m256 v) {
             _mm256_storeu_ps(to.data() + count, leftPack(v, near));
         };
-        keep(out.x, x);
-        keep(out.y, y);
-        keep(out.z, z);
-        keep(out.vx, load(s.vx));
-        keep(out.vy, load(s.vy));
-        keep(out.vz, load(s.vz));
-        if (!out.uniformRadius) keep(out.radius, load(s.radius));
-        if (s.temperature) keep(out.temperature, load(s.temperature));
+        keep(out.x, box.x);
+        keep(out.y, box.y);
+        keep(out.z, box.z);
+        keep(out.vx, box.load(s.vx));
+        keep(out.vy, box.load(s.vy));
+        keep(out.vz, box.load(s.vz));
+        if (!out.uniformRadius) keep(out.radius, box.load(s.radius));
+        if (s.temperature) keep(out.temperature, box.load(s.temperature));
         count += uint32_t(__builtin_popcount(near));
     }
 #else
@@ -246,27 +265,15 @@ inline void collectGroupCandidatesByMaterial(const GlobuleArrays& s, uint32_t be
         }
     }
 #elif defined(__AVX2__)
-    const __m256 reach2v = _mm256_set1_ps(reach * reach), zero = _mm256_setzero_ps();
-    const __m256 low[3] = {_mm256_set1_ps(lo[0]), _mm256_set1_ps(lo[1]), _mm256_set1_ps(lo[2])};
-    const __m256 high[3] = {_mm256_set1_ps(hi[0]), _mm256_set1_ps(hi[1]), _mm256_set1_ps(hi[2])};
+    const __m256 reach2v = _mm256_set1_ps(reach * reach);
     for (uint32_t j = begin; j < end; j += 8) {
         const uint32_t left = end - j;
-        const __m256i live = firstLanes8(left);
-        const auto load = [&](const float* from) {
-            return left >= 8 ? _mm256_loadu_ps(from + j) : _mm256_maskload_ps(from + j, live);
-        };
-        const auto outside = [&](__m256 v, int axis) {
-            return _mm256_max_ps(zero, _mm256_max_ps(_mm256_sub_ps(low[axis], v),
-                                                     _mm256_sub_ps(v, high[axis])));
-        };
-        const __m256 x = load(s.x), y = load(s.y), z = load(s.z);
-        const __m256 ex = outside(x, 0), ey = outside(y, 1), ez = outside(z, 2);
-        const __m256 d2 = _mm256_fmadd_ps(ez, ez, _mm256_fmadd_ps(ey, ey, _mm256_mul_ps(ex, ex)));
-        const unsigned near = unsigned(_mm256_movemask_ps(
-            _mm256_and_ps(_mm256_cmp_ps(d2, reach2v, _CMP_LE_OQ), _mm256_castsi256_ps(live))));
+        const NearBox8 box = nearBox8(s, j, left, lo, hi, reach2v);
+        const unsigned near = box.near;
         if (!near) continue;
-        const __m256 vx = load(s.vx), vy = load(s.vy), vz = load(s.vz), r = load(s.radius);
-        const __m256 t = s.temperature ? load(s.temperature) : r;
+        const __m256 vx = box.load(s.vx), vy = box.load(s.vy), vz = box.load(s.vz);
+        const __m256 r = box.load(s.radius);
+        const __m256 t = s.temperature ? box.load(s.temperature) : r;
         for (std::size_t kind = 0; kind < out.size(); ++kind) {
             const unsigned mine = near & materialMask8(material + j, left, uint8_t(kind));
             if (!mine) continue;
@@ -274,9 +281,9 @@ inline void collectGroupCandidatesByMaterial(const GlobuleArrays& s, uint32_t be
             const auto keep = [&](std::vector<float>& to, __m256 v) {
                 _mm256_storeu_ps(to.data() + c.count, leftPack(v, mine));
             };
-            keep(c.x, x);
-            keep(c.y, y);
-            keep(c.z, z);
+            keep(c.x, box.x);
+            keep(c.y, box.y);
+            keep(c.z, box.z);
             keep(c.vx, vx);
             keep(c.vy, vy);
             keep(c.vz, vz);
