@@ -76,11 +76,10 @@ void BM_SimulationStepTwoMaterials(benchmark::State& state) {
     runSteps(state, setup);
 }
 
-/// The block with temperature, one material: a melting range [40, 60] whose solid phase
-/// is stiffer (b1 2.5, the same windows), the globules at 80 (liquid), conduction, Newton
-/// cooling and a hot ground.
-void BM_SimulationStepThermal(benchmark::State& state) {
-    SimulationSetup setup = liquidBlock(state.range(0));
+/// @p setup's material given a melting range [40, 60] whose solid phase is stiffer (b1 2.5,
+/// the same windows), its globules at 80 (liquid), with conduction, Newton cooling and a
+/// hot ground.
+void withTemperature(SimulationSetup& setup) {
     MaterialSettings& m = setup.material;
     m.phases = true;
     m.tSolid = 40;
@@ -91,7 +90,13 @@ void BM_SimulationStepThermal(benchmark::State& state) {
     setup.thermal.cooling = 0.1;
     setup.thermal.groundTemperature = 100;
     setup.thermal.groundTransfer = 1;
-    setup.emitters[0].temperature = 80;
+    for (EmitterSettings& e : setup.emitters) e.temperature = 80;
+}
+
+/// The block with temperature, one material (withTemperature).
+void BM_SimulationStepThermal(benchmark::State& state) {
+    SimulationSetup setup = liquidBlock(state.range(0));
+    withTemperature(setup);
     runSteps(state, setup);
 }
 
@@ -144,16 +149,21 @@ double meanNeighborsWithin(const Globules& g, float reach) {
 
 /// A dense pile: the block's lattice squeezed to spacing 0.6, so each globule has about
 /// 500 neighbours within the drag reach of 3 (the block at 1.05 has about 100). The pile
-/// is compressed and slowly springs apart; the benchmark runs a fixed number of steps
-/// and reports the mean neighbour count before and after them.
-void BM_SimulationStepDense(benchmark::State& state) {
-    SimulationSetup setup = liquidBlock(state.range(0));
+/// is compressed and slowly springs apart.
+SimulationSetup densePile(int64_t count) {
+    SimulationSetup setup = liquidBlock(count);
     EmitterSettings& box = setup.emitters[0];
     const double spacing = 0.6;
-    const double side = std::ceil(std::cbrt(double(state.range(0)))) * spacing;
+    const double side = std::ceil(std::cbrt(double(count))) * spacing;
     box.spacing = spacing;
     box.min = {-side / 2, 0.5, -side / 2};
     box.max = {side / 2, 0.5 + side, side / 2};
+    return setup;
+}
+
+/// Steps @p setup, a dense pile, a fixed number of times (it springs apart, so the steps
+/// must be the same in every run); reports the mean neighbour count before and after.
+void runDenseSteps(benchmark::State& state, const SimulationSetup& setup) {
     tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
                                 std::size_t(state.range(1)));
     Simulation sim(setup);
@@ -164,6 +174,18 @@ void BM_SimulationStepDense(benchmark::State& state) {
     state.counters["neighbors_after"] = meanNeighborsWithin(sim.globules(), reach);
     state.counters["globule_steps_per_s"] = benchmark::Counter(
         double(sim.globules().size()) * double(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+void BM_SimulationStepDense(benchmark::State& state) {
+    runDenseSteps(state, densePile(state.range(0)));
+}
+
+/// The dense pile with temperature (withTemperature): a crowded thermal scene, the lava
+/// lamp's or a melting heap's.
+void BM_SimulationStepThermalDense(benchmark::State& state) {
+    SimulationSetup setup = densePile(state.range(0));
+    withTemperature(setup);
+    runDenseSteps(state, setup);
 }
 
 void BM_SimulationStepAllPairs(benchmark::State& state) {
@@ -209,6 +231,12 @@ BENCHMARK(BM_SimulationStepThermalTwoMaterials)
     ->UseRealTime()
     ->MinTime(2.0);
 BENCHMARK(BM_SimulationStepDense)
+    ->ArgsProduct({{100000}, {1, 2}})
+    ->ArgNames({"globules", "threads"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(20);
+BENCHMARK(BM_SimulationStepThermalDense)
     ->ArgsProduct({{100000}, {1, 2}})
     ->ArgNames({"globules", "threads"})
     ->Unit(benchmark::kMillisecond)
