@@ -1,9 +1,9 @@
 // The grid force loops: pair forces (and, in thermal scenes, heat) summed over each
 // globule's neighbours (pair_kernel.h, thermal_kernel.h). This file is compiled once per
 // instruction set (simd_path.h, sim/CMakeLists.txt) with GLOBULAR_SIMD_NAMESPACE naming
-// the path: one source, so the paths cannot drift apart. The AVX-512 build takes the
-// hand-written 16-lane kernels; the AVX2 and scalar builds take their plain loops, which
-// the compiler vectorises where it can (the compaction of neighbours stays serial).
+// the path: one source, so the paths cannot drift apart. The AVX-512 and AVX2 builds take
+// the hand-written 16- and 8-lane kernels of pair_kernel.h and thermal_kernel.h; the scalar
+// build takes their plain loops.
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -23,8 +23,6 @@
 namespace globular {
 
 namespace {
-
-constexpr std::size_t kGrain = 256;
 
 /// One grid cell's members in a range of globules in grid order, and what is around them.
 struct CellGroup {
@@ -78,6 +76,7 @@ struct GroupParts {
     std::array<std::array<float, 3>, kMax> lo, hi;
     std::vector<uint32_t> members;  ///< globule indices, part by part
     std::vector<GroupCandidates> candidates;  ///< the part at hand's, one list per material
+    bool temperatures = false;  ///< the candidates carry temperatures (thermal scenes)
 };
 
 /// Splits @p group's members [first, group.last) of @p s into @p parts (none empty).
@@ -109,12 +108,10 @@ void splitGroup(const Globules& s, std::size_t first, const CellGroup& group, Gr
     }
 }
 
-/// @p c as globule arrays: the source of a part's candidates. Without temperatures: the
-/// thermal loop keeps whole groups, because it sums the heat over candidate lanes
-/// (collectNeighbors), so a part's shorter list would change the bits.
-GlobuleArrays arraysOf(const GroupCandidates& c) {
+/// @p c as globule arrays: the source of a part's candidates; @p temperatures: with theirs.
+GlobuleArrays arraysOf(const GroupCandidates& c, bool temperatures) {
     return {c.x.data(),  c.y.data(),  c.z.data(),      c.vx.data(),
-            c.vy.data(), c.vz.data(), c.radius.data()};
+            c.vy.data(), c.vz.data(), c.radius.data(), temperatures ? c.temperature.data() : nullptr};
 }
 
 /// Calls sum(from, k) for every member k of @p group ([first, group.last) of @p s), @p from
@@ -137,7 +134,8 @@ void forEachMember(const Globules& s, std::size_t first, const CellGroup& group,
         for (std::size_t kind = 0; kind < candidates.size(); ++kind) {
             GroupCandidates& part = parts.candidates[kind];
             part.count = 0;
-            collectGroupCandidates(arraysOf(candidates[kind]), 0, candidates[kind].count,
+            collectGroupCandidates(arraysOf(candidates[kind], parts.temperatures), 0,
+                                   candidates[kind].count,
                                    parts.lo[p].data(), parts.hi[p].data(), groupReach, part);
         }
         for (uint32_t m = parts.start[p]; m < parts.start[p + 1]; ++m) {
@@ -228,7 +226,7 @@ void sortingOne(Globules& g, const PairForce& pair, NeighborWorkspace& w, Accele
     g.permute(w.grid.sortedOrder(), forces.x);
     const SumRange sum = kernelFor(pair);
     const bool uniformRadius = smallest == largest;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, w.grain),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                           sum(pair, w.grid, g, uniformRadius, r.begin(), r.end(), forces);
                       });
@@ -304,7 +302,7 @@ void sortingTable(Globules& g, const PairTable& pairs, NeighborWorkspace& w, Acc
         for (std::size_t b = 0; b < pairs.materials(); ++b) kernels.push_back(batchKernelFor(pairs(a, b)));
     }
     const bool uniformRadius = smallest == largest;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, w.grain),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                           sumRangeMixed(pairs, kernels, w.grid, g, uniformRadius, r.begin(),
                                         r.end(), forces);
@@ -337,8 +335,9 @@ struct ThermalKernel {
 };
 
 /// sumRangeMixed for thermal scenes: the candidates of a cell gathered once per material
-/// with their temperatures; for each member and material, the heat summed as the
-/// neighbours are collected and the force in the pair's phase (thermal_kernel.h).
+/// with their temperatures; for each member and material, the force in the pair's phase
+/// and the heat flowing in (thermal_kernel.h). The heat is summed over each member's
+/// neighbours once collected, so crowded cells go in parts here too.
 void sumRangeThermal(const std::vector<ThermalKernel>& kernels, std::size_t kinds,
                      const NeighborGrid& grid, const Globules& s, bool uniformRadius,
                      std::size_t begin, std::size_t end, Accelerations& forces) {
@@ -350,10 +349,11 @@ void sumRangeThermal(const std::vector<ThermalKernel>& kernels, std::size_t kind
     std::vector<GroupCandidates> candidates(kinds);
     for (GroupCandidates& c : candidates) c.uniformRadius = uniformRadius;
     std::vector<std::pair<float, float>> ranges(kinds);
+    GroupParts parts;
+    parts.temperatures = true;
     NeighborBatch batch;
     for (std::size_t first = begin; first < end;) {
         groupAt(grid, s, first, end, cursor, group);
-        const std::size_t last = group.last;
         for (GroupCandidates& c : candidates) {
             c.reserve(group.total);
             c.count = 0;
@@ -368,25 +368,26 @@ void sumRangeThermal(const std::vector<ThermalKernel>& kernels, std::size_t kind
                                                  candidates);
             }
         }
+        // The phases follow the group's candidates: a part's are among them, and where a
+        // pure phase holds, the blend gives its bits (thermal_kernel.h).
         for (std::size_t kind = 0; kind < kinds; ++kind) {
             const GroupCandidates& c = candidates[kind];
             if (c.count > 0) ranges[kind] = temperatureRange(c.temperature.data(), c.count);
         }
         batch.reserve(group.total);
-        for (std::size_t k = first; k < last; ++k) {
+        const auto sumMember = [&](const std::vector<GroupCandidates>& from, std::size_t k) {
             const std::size_t mine = s.materialOf(k);
             const float t = s.temperature[k];
             float fx = 0, fy = 0, fz = 0, heat = 0;
             for (std::size_t kind = 0; kind < kinds; ++kind) {
-                if (candidates[kind].count == 0) continue;
+                if (from[kind].count == 0) continue;
                 const ThermalKernel& kernel = kernels[mine * kinds + kind];
                 const ThermalPhase phase =
                     phaseOf(kernel.pair, t, ranges[kind].first, ranges[kind].second);
-                NeighborHeat flow{t, kernel.pair.conductance, phase == ThermalPhase::Blend};
                 batch.count = 0;
-                collectNeighbors<true>(candidates[kind], s.px[k], s.py[k], s.pz[k], s.vx[k],
-                                       s.vy[k], s.vz[k], s.radius[k], kernel.reach2, batch, &flow);
-                heat += flow.heat;
+                collectNeighbors<true>(from[kind], s.px[k], s.py[k], s.pz[k], s.vx[k], s.vy[k],
+                                       s.vz[k], s.radius[k], kernel.reach2, batch);
+                heat += kernel.pair.conductance * batchHeat(batch, t, kernel.reach2);
                 if (phase == ThermalPhase::Blend) {
                     kernel.blended(kernel.pair, t, batch, fx, fy, fz);
                 } else if (phase == ThermalPhase::Solid) {
@@ -399,8 +400,9 @@ void sumRangeThermal(const std::vector<ThermalKernel>& kernels, std::size_t kind
             forces.y[k] = fy;
             forces.z[k] = fz;
             forces.heat[k] = heat;
-        }
-        first = last;
+        };
+        forEachMember(s, first, group, groupReach, candidates, parts, sumMember);
+        first = group.last;
     }
 }
 
@@ -420,7 +422,7 @@ void thermal(Globules& g, const PairTable& pairs, NeighborWorkspace& w, Accelera
         for (std::size_t b = 0; b < kinds; ++b) kernels.emplace_back(pairs.thermal(a, b));
     }
     const bool uniformRadius = smallest == largest;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, w.grain),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                           sumRangeThermal(kernels, kinds, w.grid, g, uniformRadius, r.begin(),
                                           r.end(), forces);

@@ -19,6 +19,9 @@ namespace globular {
 struct NeighborWorkspace {
     NeighborGrid grid;
     float largestRadius = 0;  ///< of the globules the grid was last built over
+    /// Globules per task at least. A task's range may cut a grid cell's group anywhere;
+    /// tests shrink it to cut groups at other places, which must not change a bit.
+    std::size_t grain = 256;
 };
 
 /// One path's force loops (forces.h: pairForcesSorting and pairForcesThermal).

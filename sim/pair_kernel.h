@@ -39,7 +39,7 @@ struct NeighborBatch {
     std::vector<float> dx, dy, dz, vDotP, radiusSum;
     float uniformSum = 0;  ///< r_i + r_j of every neighbour, or 0: see radiusSum
     uint32_t count = 0;
-    std::vector<float> temperature;  ///< thermal scenes where pairs melt (NeighborHeat)
+    std::vector<float> temperature;  ///< thermal scenes (collectNeighbors<true>)
 
     /// Room for @p candidates entries.
     void reserve(std::size_t candidates) {
@@ -299,25 +299,17 @@ inline void collectGroupCandidatesByMaterial(const GlobuleArrays& s, uint32_t be
 #endif
 }
 
-/// What collectNeighbors does besides in thermal scenes (thermal_settings.h): it sums the
-/// heat flowing into globule i from each neighbour within reach, k w (T_j - T_i) with
-/// w = 1 - d^2 / (reach^2 (r_i + r_j)^2), while it has the pair at hand, and keeps what
-/// the blended force needs (thermal_kernel.h).
-struct NeighborHeat {
-    float temperature = 0;          ///< T_i
-    float conductance = 0;          ///< k of the pair
-    bool keepTemperature = false;   ///< keep the neighbours' temperatures (the blend)
-    float heat = 0;                 ///< out: the sum
-};
-
 /// Appends to @p out the candidates j of @p c with 0 < |x_i - x_j| < reach (r_i + r_j),
 /// reach = PairForce::cutoff(1), for globule i at (x, y, z) with velocity v and radius r.
 /// Globule i itself (and any globule at exactly its position, whose force is zero) is
-/// left out. @p out has room for them. <Thermal>: also what @p thermal asks for.
+/// left out. @p out has room for them. <Thermal>: also the neighbours' temperatures, for
+/// the heat and the blended force (thermal_kernel.h). The heat is not summed here, over
+/// the candidates' lanes, but over the compacted neighbours (batchHeat): which lane a
+/// candidate takes follows its place in the list, which a range's cut through a cell's
+/// group, or a crowded group's split, changes; the neighbours' order they do not.
 template <bool Thermal = false>
 inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z, float vx,
-                             float vy, float vz, float r, float reach2, NeighborBatch& out,
-                             NeighborHeat* thermal = nullptr) {
+                             float vy, float vz, float r, float reach2, NeighborBatch& out) {
     uint32_t count = out.count;
     float *bx = out.dx.data(), *by = out.dy.data(), *bz = out.dz.data();
     float* bvp = out.vDotP.data();
@@ -329,18 +321,12 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
     const float *cvx = c.vx.data(), *cvy = c.vy.data(), *cvz = c.vz.data();
     const float *cr = c.radius.data(), *ct = c.temperature.data();
     const bool uniformRadius = c.uniformRadius;
-    const bool keepTemperature = Thermal && thermal->keepTemperature;
     float* bt = out.temperature.data();
 #if defined(__AVX512F__)
     const __m512 px = _mm512_set1_ps(x), py = _mm512_set1_ps(y), pz = _mm512_set1_ps(z);
     const __m512 pvx = _mm512_set1_ps(vx), pvy = _mm512_set1_ps(vy), pvz = _mm512_set1_ps(vz);
     const __m512 pr = _mm512_set1_ps(r), reach2v = _mm512_set1_ps(reach2);
-    const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1);
-    __m512 heat = zero, ti = zero, uniformInvLimit = zero;
-    if constexpr (Thermal) {
-        ti = _mm512_set1_ps(thermal->temperature);
-        uniformInvLimit = _mm512_set1_ps(1.0f / ((r + r) * (r + r) * reach2));  // 1 / limit
-    }
+    const __m512 zero = _mm512_setzero_ps();
     for (uint32_t j = 0; j < end; j += 16) {
         // The padding past count is readable: plain loads, and a masked test.
         const uint32_t left = end - j;
@@ -366,27 +352,14 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
         const __m512 dvz = _mm512_sub_ps(pvz, _mm512_loadu_ps(cvz + j));
         keep(bvp, _mm512_fmadd_ps(dvz, dz, _mm512_fmadd_ps(dvy, dy, _mm512_mul_ps(dvx, dx))));
         if (!uniformRadius) keep(bsum, sum);
-        if constexpr (Thermal) {
-            const __m512 tj = _mm512_loadu_ps(ct + j);
-            if (keepTemperature) keep(bt, tj);
-            // Division, not an estimate: w_ij must equal w_ji bit for bit.
-            const __m512 invLimit = uniformRadius ? uniformInvLimit : _mm512_div_ps(one, limit);
-            const __m512 w = _mm512_fnmadd_ps(d2, invLimit, one);
-            heat = _mm512_mask3_fmadd_ps(w, _mm512_sub_ps(tj, ti), heat, near);  // k after the sum
-        }
+        if constexpr (Thermal) keep(bt, _mm512_loadu_ps(ct + j));
         count += uint32_t(__builtin_popcount(near));
     }
-    if constexpr (Thermal) thermal->heat = thermal->conductance * _mm512_reduce_add_ps(heat);
 #elif defined(__AVX2__)
     const __m256 px = _mm256_set1_ps(x), py = _mm256_set1_ps(y), pz = _mm256_set1_ps(z);
     const __m256 pvx = _mm256_set1_ps(vx), pvy = _mm256_set1_ps(vy), pvz = _mm256_set1_ps(vz);
     const __m256 pr = _mm256_set1_ps(r), reach2v = _mm256_set1_ps(reach2);
-    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1);
-    __m256 heat = zero, ti = zero, uniformInvLimit = zero;
-    if constexpr (Thermal) {
-        ti = _mm256_set1_ps(thermal->temperature);
-        uniformInvLimit = _mm256_set1_ps(1.0f / ((r + r) * (r + r) * reach2));  // 1 / limit
-    }
+    const __m256 zero = _mm256_setzero_ps();
     for (uint32_t j = 0; j < end; j += 8) {
         // The padding past count is readable: plain loads, and a masked test.
         const __m256 live = _mm256_castsi256_ps(firstLanes8(end - j));
@@ -412,20 +385,10 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
         const __m256 dvz = _mm256_sub_ps(pvz, _mm256_loadu_ps(cvz + j));
         keep(bvp, _mm256_fmadd_ps(dvz, dz, _mm256_fmadd_ps(dvy, dy, _mm256_mul_ps(dvx, dx))));
         if (!uniformRadius) keep(bsum, sum);
-        if constexpr (Thermal) {
-            const __m256 tj = _mm256_loadu_ps(ct + j);
-            if (keepTemperature) keep(bt, tj);
-            // Division, not an estimate: w_ij must equal w_ji bit for bit.
-            const __m256 invLimit = uniformRadius ? uniformInvLimit : _mm256_div_ps(one, limit);
-            const __m256 w = _mm256_fnmadd_ps(d2, invLimit, one);
-            const __m256 added = _mm256_fmadd_ps(w, _mm256_sub_ps(tj, ti), heat);
-            heat = _mm256_blendv_ps(heat, added, nearLanes);
-        }
+        if constexpr (Thermal) keep(bt, _mm256_loadu_ps(ct + j));
         count += uint32_t(__builtin_popcount(near));
     }
-    if constexpr (Thermal) thermal->heat = thermal->conductance * sumLanes(heat);
 #else
-    float heat = 0;
     for (uint32_t j = 0; j < end; ++j) {
         const float dx = x - cx[j], dy = y - cy[j], dz = z - cz[j];
         const float d2 = dx * dx + dy * dy + dz * dz;
@@ -435,16 +398,9 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
         bz[count] = dz;
         bvp[count] = (vx - cvx[j]) * dx + (vy - cvy[j]) * dy + (vz - cvz[j]) * dz;
         bsum[count] = sum;
-        const float limit = sum * sum * reach2;
-        const bool near = d2 < limit && d2 > 0;
-        if constexpr (Thermal) {
-            const float tj = ct[j];
-            if (keepTemperature) bt[count] = tj;
-            if (near) heat += (1.0f - d2 * (1.0f / limit)) * (tj - thermal->temperature);
-        }
-        count += near;
+        if constexpr (Thermal) bt[count] = ct[j];
+        count += d2 < sum * sum * reach2 && d2 > 0;
     }
-    if constexpr (Thermal) thermal->heat = thermal->conductance * heat;
 #endif
     out.count = count;
     out.uniformSum = c.uniformRadius ? r + r : 0.0f;

@@ -14,7 +14,7 @@ namespace globular {
 
 enum class SimdPath {
     Scalar,  ///< baseline x86-64 (SSE2): plain loops
-    Avx2,    ///< AVX2 and FMA: the plain loops, compiled for 8 lanes
+    Avx2,    ///< AVX2 and FMA: the hand-written 8-lane kernels
     Avx512,  ///< AVX-512 F, BW, VL, DQ: the hand-written 16-lane kernels
 };
 

@@ -4,8 +4,7 @@
 // material the pair (ThermalPair) decides:
 //   - phaseOf: whether every pair the globule forms with that material is solid, every
 //     one liquid, or whether their constants blend by each pair's mean temperature;
-//   - the heat flowing in is summed while the neighbours are collected (NeighborHeat in
-//     pair_kernel.h), which has each pair at hand;
+//   - the heat flowing in is summed over the neighbours once collected (batchHeat);
 //   - the force is pair_kernel.h's sumBatch with the phase's constants, or, where pairs
 //     melt, sumBlendedBatch below.
 // The blend is of what the kernel uses, b1, b2, 1/C_r^2 and 1/C_d^2 (and m, n on the
@@ -54,26 +53,17 @@ inline std::pair<float, float> temperatureRange(const float* t, uint32_t count) 
     }
     return {_mm512_reduce_min_ps(lo), _mm512_reduce_max_ps(hi)};
 #elif defined(__AVX2__)
-    __m256 lo = _mm256_set1_ps(t[0]), hi = lo;
-    uint32_t k = 0;
-    for (; k + 8 <= count; k += 8) {
-        const __m256 v = _mm256_loadu_ps(t + k);
+    // Lanes past count are not read; they repeat t[0], which leaves the range as it is.
+    const __m256 first = _mm256_set1_ps(t[0]);
+    __m256 lo = first, hi = first;
+    for (uint32_t k = 0; k < count; k += 8) {
+        const __m256i live = firstLanes8(count - k);
+        const __m256 v = _mm256_blendv_ps(first, _mm256_maskload_ps(t + k, live),
+                                          _mm256_castsi256_ps(live));
         lo = _mm256_min_ps(lo, v);
         hi = _mm256_max_ps(hi, v);
     }
-    alignas(32) float low[8], high[8];
-    _mm256_store_ps(low, lo);
-    _mm256_store_ps(high, hi);
-    float a = low[0], b = high[0];
-    for (int l = 1; l < 8; ++l) {
-        a = std::min(a, low[l]);
-        b = std::max(b, high[l]);
-    }
-    for (; k < count; ++k) {
-        a = std::min(a, t[k]);
-        b = std::max(b, t[k]);
-    }
-    return {a, b};
+    return {minLanes(lo), maxLanes(hi)};
 #else
     float lo = t[0], hi = t[0];
     for (uint32_t k = 1; k < count; ++k) {
@@ -81,6 +71,51 @@ inline std::pair<float, float> temperatureRange(const float* t, uint32_t count) 
         hi = std::max(hi, t[k]);
     }
     return {lo, hi};
+#endif
+}
+
+/// The heat flowing into a globule at temperature @p ti from the neighbours in @p batch
+/// (their temperatures kept by collectNeighbors<true>), per unit conductance: the sum of
+/// w (T_j - T_i) with w = 1 - d^2 / (reach^2 (r_i + r_j)^2), reach^2 = @p reach2. The
+/// weight comes from a division, not an estimate, so w_ij equals w_ji bit for bit and
+/// conduction conserves heat to the sum's rounding. The sum runs over the batch in its
+/// order (in 8 lanes with AVX2, and in the AVX-512 build, which has AVX2 too): a globule
+/// meets its neighbours in the same order however a task's range cuts its cell's group
+/// or a crowded group is split (force_kernels.cpp), so its heat has the same bits on any
+/// thread count.
+inline float batchHeat(const NeighborBatch& batch, float ti, float reach2) {
+    const float *bx = batch.dx.data(), *by = batch.dy.data(), *bz = batch.dz.data();
+    const float *bt = batch.temperature.data(), *bsum = batch.radiusSum.data();
+    const bool uniform = batch.uniformSum > 0;
+    const float uniformInvLimit = uniform ? 1.0f / (batch.uniformSum * batch.uniformSum * reach2) : 0;
+    const uint32_t count = batch.count;
+#if defined(__AVX2__)
+    const __m256 one = _mm256_set1_ps(1), tI = _mm256_set1_ps(ti), reach2v = _mm256_set1_ps(reach2);
+    __m256 heat = _mm256_setzero_ps();
+    for (uint32_t k = 0; k < count; k += 8) {
+        // The padding past count is readable; its lanes are left out of the sum.
+        const __m256 live = _mm256_castsi256_ps(firstLanes8(count - k));
+        const __m256 dx = _mm256_loadu_ps(bx + k), dy = _mm256_loadu_ps(by + k);
+        const __m256 dz = _mm256_loadu_ps(bz + k);
+        const __m256 d2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
+        __m256 invLimit = _mm256_set1_ps(uniformInvLimit);
+        if (!uniform) {
+            const __m256 sum = _mm256_loadu_ps(bsum + k);
+            invLimit = _mm256_div_ps(one, _mm256_mul_ps(_mm256_mul_ps(sum, sum), reach2v));
+        }
+        const __m256 w = _mm256_fnmadd_ps(d2, invLimit, one);
+        const __m256 added = _mm256_fmadd_ps(w, _mm256_sub_ps(_mm256_loadu_ps(bt + k), tI), heat);
+        heat = _mm256_blendv_ps(heat, added, live);
+    }
+    return sumLanes(heat);
+#else
+    float heat = 0;
+    for (uint32_t k = 0; k < count; ++k) {
+        const float invLimit = uniform ? uniformInvLimit : 1.0f / (bsum[k] * bsum[k] * reach2);
+        const float d2 = bx[k] * bx[k] + by[k] * by[k] + bz[k] * bz[k];
+        heat += (1.0f - d2 * invLimit) * (bt[k] - ti);
+    }
+    return heat;
 #endif
 }
 

@@ -140,11 +140,13 @@ Accelerations allPairsForces(const Globules& cloud, const PairTable& table, bool
     return reference;
 }
 
-/// The grid loop's forces on @p cloud on @p path, back in the cloud's order.
+/// The grid loop's forces on @p cloud on @p path, back in the cloud's order; @p grain:
+/// globules per task at least (NeighborWorkspace).
 Accelerations gridForces(const Globules& cloud, const PairTable& table, bool twoMaterials,
-                         SimdPath path) {
+                         SimdPath path, std::size_t grain = NeighborWorkspace{}.grain) {
     Globules sorted = cloud;
     NeighborWorkspace workspace;
+    workspace.grain = grain;
     Accelerations grid;
     twoMaterials ? pairForcesSorting(sorted, table, workspace, grid, path)
                  : pairForcesSorting(sorted, table(0, 0), workspace, grid, path);
@@ -176,7 +178,8 @@ TEST(SimdPath, EveryPathGivesTheAllPairsForces) {
 
 // Crowded cells (about 160 globules a group) are split into parts with their own
 // candidates (force_kernels.cpp, GroupParts): still every pair within reach, once, and the
-// same bits on one thread as on two, where the ranges may cut groups at other places.
+// same bits on one thread as on two, where the ranges may cut groups at other places, and
+// with a grain of a few globules, where they do.
 TEST(SimdPath, CrowdedCellsGiveTheAllPairsForcesOnAnyThreadCount) {
     const PairTable table = liquidAndSolid();
     for (bool twoMaterials : {false, true}) {
@@ -185,15 +188,22 @@ TEST(SimdPath, CrowdedCellsGiveTheAllPairsForcesOnAnyThreadCount) {
         for (SimdPath p : kAllPaths) {
             if (!runs(p)) continue;
             SCOPED_TRACE(std::string(simdPathName(p)) + (twoMaterials ? ", two materials" : ""));
-            Accelerations byThreads[2];
+            Accelerations byThreads[3];
             for (std::size_t threads : {1u, 2u}) {
                 tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
                 byThreads[threads - 1] = gridForces(cloud, table, twoMaterials, p);
             }
+            {
+                tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+                byThreads[2] = gridForces(cloud, table, twoMaterials, p, 5);
+            }
             expectClose(byThreads[0], reference);
-            EXPECT_EQ(byThreads[0].x, byThreads[1].x);
-            EXPECT_EQ(byThreads[0].y, byThreads[1].y);
-            EXPECT_EQ(byThreads[0].z, byThreads[1].z);
+            for (int run : {1, 2}) {
+                SCOPED_TRACE(run == 1 ? "2 threads" : "2 threads, grain 5");
+                EXPECT_EQ(byThreads[0].x, byThreads[run].x);
+                EXPECT_EQ(byThreads[0].y, byThreads[run].y);
+                EXPECT_EQ(byThreads[0].z, byThreads[run].z);
+            }
         }
     }
 }

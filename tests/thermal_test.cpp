@@ -248,8 +248,9 @@ TEST(Thermal, GridLoopMatchesTheAllPairsReference) {
     EXPECT_GT(checked, 500u);
 }
 
-// Crowded cells (about 180 globules a cell group), cut at other places by other thread
-// counts' ranges: the heat and the forces are the same bits.
+// Crowded cells (about 180 globules a cell group, split in parts where the heat is summed
+// over the compacted neighbours), cut at other places by other thread counts' ranges and
+// by a small grain (a few globules per task): the heat and the forces are the same bits.
 TEST(Thermal, CrowdedCellsGiveTheSameBitsOnAnyThreadCount) {
     MaterialSettings other = wax("b");
     other.tSolid = 20;
@@ -259,16 +260,21 @@ TEST(Thermal, CrowdedCellsGiveTheSameBitsOnAnyThreadCount) {
         const PairTable table = two ? PairTable({wax("a"), other}, {}) : PairTable({other}, {});
         const Globules cloud = warmCloud(3000, 9, two);
         std::vector<Accelerations> byThreads;
-        for (std::size_t threads : {1u, 2u, 3u, 4u}) {
-            tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-            Globules sorted = cloud;
-            NeighborWorkspace workspace;
-            Accelerations forces;
-            pairForcesThermal(sorted, table, workspace, forces);
-            byThreads.push_back(forces);
+        std::vector<std::string> runs;
+        for (std::size_t grain : {std::size_t(256), std::size_t(5)}) {
+            for (std::size_t threads : {1u, 2u, 3u, 4u}) {
+                tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+                Globules sorted = cloud;
+                NeighborWorkspace workspace;
+                workspace.grain = grain;
+                Accelerations forces;
+                pairForcesThermal(sorted, table, workspace, forces);
+                byThreads.push_back(forces);
+                runs.push_back(std::to_string(threads) + " threads, grain " + std::to_string(grain));
+            }
         }
         for (std::size_t t = 1; t < byThreads.size(); ++t) {
-            SCOPED_TRACE(std::to_string(t + 1) + " threads" + (two ? ", two materials" : ""));
+            SCOPED_TRACE(runs[t] + (two ? ", two materials" : ""));
             EXPECT_EQ(byThreads[t].heat, byThreads[0].heat);
             EXPECT_EQ(byThreads[t].x, byThreads[0].x);
             EXPECT_EQ(byThreads[t].z, byThreads[0].z);
