@@ -14,9 +14,8 @@ using openvdb::Coord;
 constexpr uint64_t kZ0 = 0x0101010101010101ull;  // the bits with z = 0 in every word
 constexpr uint64_t kZ7 = kZ0 << 7;               // and with z = 7
 
-/// What each voxel of a leaf with mask @p m sees one step away along @p axis (0 = x) in
-/// direction @p dir (-1 or +1): bit v of the result is bit v + dir e_axis of @p m, or of
-/// @p beyond (the leaf on that side; null: none, all off) past the face.
+}  // namespace
+
 LeafBits neighbourBits(const LeafBits& m, const LeafBits* beyond, int axis, int dir) {
     static const LeafBits none;
     const LeafBits& b = beyond ? *beyond : none;
@@ -46,6 +45,8 @@ LeafBits neighbourBits(const LeafBits& m, const LeafBits* beyond, int axis, int 
     }
     return out;
 }
+
+namespace {
 
 /// The neighbour leaf of @p masks on face @p f (LeafSet::Faces order), or null.
 const LeafBits* onFace(const std::vector<LeafBits>& masks, const std::array<int32_t, 6>& faces,

@@ -61,6 +61,11 @@ class LeafSet {
     std::vector<openvdb::Coord> origins_;
 };
 
+/// What each voxel of a leaf with mask @p m sees one step away along @p axis (0 = x) in
+/// direction @p dir (-1 or +1): bit v of the result is bit v + dir e_axis of @p m, or of
+/// @p beyond (the leaf on that side; null: none, all off) past the face.
+LeafBits neighbourBits(const LeafBits& m, const LeafBits* beyond, int axis, int dir);
+
 /// The voxels with a face neighbour on the other side of @p inside (masks of a set's
 /// leaves, @p faces its face neighbours), on both sides. Voxels of leaves outside the set
 /// are outside; the result's voxels in such leaves are not kept, so the set must hold

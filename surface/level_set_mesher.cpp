@@ -22,6 +22,63 @@ void appendOutward(std::vector<uint32_t>& out, uint32_t a, uint32_t b, uint32_t 
     out.insert(out.end(), {a, c, b});
 }
 
+/// Central differences of the level set's trilinear interpolant half a voxel either side
+/// of index-space point @p p along each axis: the six samples of OpenVDB's BoxSampler,
+/// bit for bit, from the 3x3x3 voxels they share: 27 reads, straight from the leaf when
+/// the window lies in one, where the samplers make 48 through the accessor.
+openvdb::Vec3d halfVoxelGradient(const FloatGrid::ConstAccessor& accessor,
+                                 const openvdb::Vec3d& p) {
+    using openvdb::Coord;
+    using Leaf = FloatGrid::TreeType::LeafNodeType;
+    const Coord base(int(std::floor(p[0] - 0.5)), int(std::floor(p[1] - 0.5)),
+                     int(std::floor(p[2] - 0.5)));
+    float window[3][3][3];
+    const Leaf* leaf = accessor.probeConstLeaf(base);
+    const int mask = int(Leaf::DIM) - 1;
+    if (leaf && (base[0] & mask) <= mask - 2 && (base[1] & mask) <= mask - 2 &&
+        (base[2] & mask) <= mask - 2) {
+        const float* values = leaf->buffer().data();
+        const openvdb::Index first = Leaf::coordToOffset(base);
+        for (int a = 0; a < 3; ++a) {
+            for (int b = 0; b < 3; ++b) {
+                for (int c = 0; c < 3; ++c) {
+                    window[a][b][c] = values[first + openvdb::Index(a << 6 | b << 3 | c)];
+                }
+            }
+        }
+    } else {
+        for (int a = 0; a < 3; ++a) {
+            for (int b = 0; b < 3; ++b) {
+                for (int c = 0; c < 3; ++c) {
+                    window[a][b][c] = accessor.getValue(base.offsetBy(a, b, c));
+                }
+            }
+        }
+    }
+    openvdb::Vec3d gradient;
+    for (int k = 0; k < 3; ++k) {
+        float side[2];
+        for (int s = 0; s < 2; ++s) {
+            openvdb::Vec3d q = p;
+            q[k] += s ? 0.5 : -0.5;
+            const openvdb::Vec3i cell = openvdb::tools::local_util::floorVec3(q);
+            const openvdb::Vec3d uvw = q - cell;
+            const Coord o = Coord(cell) - base;  // 0 or 1 on each axis
+            float corners[2][2][2];
+            for (int a = 0; a < 2; ++a) {
+                for (int b = 0; b < 2; ++b) {
+                    for (int c = 0; c < 2; ++c) {
+                        corners[a][b][c] = window[o[0] + a][o[1] + b][o[2] + c];
+                    }
+                }
+            }
+            side[s] = openvdb::tools::BoxSampler::trilinearInterpolation(corners, uvw);
+        }
+        gradient[k] = side[1] - side[0];
+    }
+    return gradient;
+}
+
 }  // namespace
 
 TriangleMesh meshLevelSet(const FloatGrid& levelSet, double adaptivity) {
@@ -57,16 +114,9 @@ TriangleMesh meshLevelSet(const FloatGrid& levelSet, double adaptivity) {
     const auto& xform = levelSet.transform();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024), [&](auto range) {
         auto accessor = levelSet.getConstAccessor();
-        openvdb::tools::GridSampler<FloatGrid::ConstAccessor, openvdb::tools::BoxSampler> sample(
-            accessor, xform);
         for (std::size_t v = range.begin(); v < range.end(); ++v) {
-            const openvdb::Vec3d p = xform.worldToIndex(openvdb::Vec3d(points[v]));
-            openvdb::Vec3d g;
-            for (int k = 0; k < 3; ++k) {
-                openvdb::Vec3d step(0.0);
-                step[k] = 0.5;
-                g[k] = sample.isSample(p + step) - sample.isSample(p - step);
-            }
+            const openvdb::Vec3d g =
+                halfVoxelGradient(accessor, xform.worldToIndex(openvdb::Vec3d(points[v])));
             const double length = g.length();
             float* n = &mesh.normals[3 * v];
             if (length > 0) {

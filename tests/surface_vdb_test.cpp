@@ -2,6 +2,8 @@
 // OpenVDB and vdb_print see it, and grid determinism across thread counts.
 #include <gtest/gtest.h>
 #include <openvdb/io/File.h>
+#include <openvdb/tools/Interpolation.h>
+#include <openvdb/tools/LevelSetSphere.h>
 #include <tbb/task_arena.h>
 
 #include <array>
@@ -209,6 +211,38 @@ TEST(FieldToLevelSet, EmptyFieldGivesAnEmptyLevelSet) {
     const auto levelSet = fieldToLevelSet(*field, 0.5, 3.0);
     EXPECT_EQ(levelSet->activeVoxelCount(), 0u);
     EXPECT_GT(levelSet->getConstAccessor().getValue({0, 0, 0}), 0.0f);
+}
+
+// The mesh's normals read a 3x3x3 window of voxels once per vertex; they must be the
+// six BoxSampler samples' central differences, bit for bit, wherever the window lies
+// (inside one leaf, across leaves, on a tile).
+TEST(MeshLevelSet, NormalsAreTheBoxSamplersCentralDifferencesExactly) {
+    openvdb::initialize();
+    for (const float halfWidth : {3.0f, 1.5f}) {
+        const auto sphere = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(
+            7.3f, openvdb::Vec3f(0.37f, -1.21f, 2.05f), 0.25f, halfWidth);
+        const TriangleMesh mesh = meshLevelSet(*sphere, 0.0);
+        ASSERT_GT(mesh.vertexCount(), 1000u);
+        ASSERT_EQ(mesh.normals.size(), mesh.positions.size());
+        const auto accessor = sphere->getConstAccessor();
+        openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>
+            sample(accessor, sphere->transform());
+        std::size_t differ = 0;
+        for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+            const openvdb::Vec3d p = sphere->transform().worldToIndex(openvdb::Vec3d(
+                mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]));
+            openvdb::Vec3d g;
+            for (int k = 0; k < 3; ++k) {
+                openvdb::Vec3d step(0.0);
+                step[k] = 0.5;
+                g[k] = sample.isSample(p + step) - sample.isSample(p - step);
+            }
+            for (int k = 0; k < 3; ++k) {
+                differ += mesh.normals[3 * v + k] != float(g[k] / g.length());
+            }
+        }
+        EXPECT_EQ(differ, 0u) << "half width " << halfWidth;
+    }
 }
 
 TEST(SurfaceVdb, FileHoldsTheDocumentedGrids) {
