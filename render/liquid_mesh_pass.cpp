@@ -1,8 +1,5 @@
 #include "liquid_mesh_pass.h"
 
-#include <algorithm>
-#include <string>
-
 #include "errors.h"
 #include "liquid_shaders.h"
 #include "mesh_pass.h"
@@ -10,13 +7,12 @@
 
 namespace globular::detail {
 
-LiquidMeshPass::LiquidMeshPass()
+LiquidMeshPass::LiquidMeshPass(int samples)
     : mThickness("liquid mesh thickness", shaders::liquidMeshVertex(),
                  shaders::liquidMeshThicknessFragment()),
-      mShade("liquid mesh", shaders::liquidMeshVertex(), shaders::liquidMeshFragment()),
+      mShade("liquid mesh", shaders::screenRectangleVertex(), shaders::liquidMeshFragment(samples)),
       mShadow("liquid mesh shadow", shaders::meshShadowVertex(), shaders::depthOnlyFragment()),
       mVertexArray(gl::makeVertexArray()),
-      mEmpty(gl::makeVertexArray()),
       mPositions(gl::makeBuffer()),
       mNormals(gl::makeBuffer()),
       mIndices(gl::makeBuffer()) {}
@@ -32,6 +28,7 @@ void LiquidMeshPass::upload(const MeshView& mesh) {
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indexCount * sizeof(uint32_t)), mesh.triangles,
                  GL_STREAM_DRAW);
     glBindVertexArray(0);
+    mVisibility.attach(mesh, mPositions, mNormals, mIndices);
     gl::checkErrors("uploading the liquid mesh");
 }
 
@@ -44,11 +41,9 @@ void LiquidMeshPass::drawShadow(const FrameUniforms& f) const {
     glBindVertexArray(0);
 }
 
-void LiquidMeshPass::draw(const FrameUniforms& f, const LiquidLook& look,
-                          const LiquidOptics& optics) {
+void LiquidMeshPass::draw(const FrameUniforms& f, const FrameTarget& target,
+                          const LiquidLook& look, const LiquidOptics& optics) {
     if (mIndexCount == 0) return;
-    GLint frame = 0;
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &frame);
     mBehind.capture(f.width, f.height);
 
     // Thickness: every face, no depth test, eye distances added with their sign.
@@ -66,31 +61,23 @@ void LiquidMeshPass::draw(const FrameUniforms& f, const LiquidLook& look,
     setVec3(mThickness, "uEye", f.eye);
     glBindVertexArray(mVertexArray.id());
     glDrawElements(GL_TRIANGLES, GLsizei(mIndexCount), GL_UNSIGNED_INT, nullptr);
+    glBindVertexArray(0);
     glDisable(GL_BLEND);
 
-    // The front faces, shaded as liquid into the frame.
-    glBindFramebuffer(GL_FRAMEBUFFER, GLuint(frame));
-    glViewport(0, 0, f.width, f.height);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
+    // The front faces, then their shading as liquid into the frame.
+    target.bind();
+    mVisibility.drawVisibility(f, target, mVertexArray, mIndexCount, mClosed);
     glUseProgram(mShade.id());
     applyFrameUniforms(mShade, f);
     LiquidLook own = look;
     own.ior = optics.ior;
     applyLiquidUniforms(mShade, f, own);
     setVec3(mShade, "uMeshSigma", optics.sigma);
-    glUniform1i(mShade.uniform("uThickness"), 2);
     mBehind.bind(1);
     glActiveTexture(GL_TEXTURE2);
     glBindTexture(GL_TEXTURE_2D, mDepth.texture.id());
-    glActiveTexture(GL_TEXTURE0);
-    if (mClosed) {
-        glCullFace(GL_BACK);
-        glEnable(GL_CULL_FACE);
-    }
-    glDrawElements(GL_TRIANGLES, GLsizei(mIndexCount), GL_UNSIGNED_INT, nullptr);
-    glDisable(GL_CULL_FACE);
-    glBindVertexArray(0);
+    glUniform1i(mShade.uniform("uThickness"), 2);
+    mVisibility.drawShading(mShade, f, target, 3);
     gl::checkErrors("drawing the liquid mesh");
 }
 

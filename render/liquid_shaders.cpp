@@ -296,13 +296,10 @@ void main() {
 std::string liquidMeshVertex() {
     return version() + R"(
 layout(location = 0) in vec3 aPosition;
-layout(location = 1) in vec3 aNormal;  // (0, 0, 0) when the mesh has none
 uniform mat4 uViewProj;
 out vec3 vWorld;
-out vec3 vNormal;
 void main() {
     vWorld = aPosition;
-    vNormal = aNormal;
     gl_Position = uViewProj * vec4(aPosition, 1.0);
 }
 )";
@@ -311,7 +308,6 @@ void main() {
 std::string liquidMeshThicknessFragment() {
     return version() + R"(
 in vec3 vWorld;
-in vec3 vNormal;
 uniform vec3 uEye;
 layout(location = 0) out float fragSignedDistance;
 void main() {
@@ -321,21 +317,31 @@ void main() {
 )";
 }
 
-std::string liquidMeshFragment() {
-    return liquidFragment(R"(
-in vec3 vWorld;
-in vec3 vNormal;
+std::string liquidMeshFragment(int samples) {
+    return liquidFragment(triangleHitLibrary(samples) + R"(
 uniform sampler2D uThickness;  // unit 2: the eye ray's length inside the mesh, per pixel
 uniform vec3 uMeshSigma;       // absorption per world unit
 layout(location = 0) out vec4 fragColor;
 void main() {
-    vec3 n = dot(vNormal, vNormal) > 0.25 ? normalize(vNormal)
-                                          : normalize(cross(dFdx(vWorld), dFdy(vWorld)));
-    vec3 dir = normalize(vWorld - uEye);
-    if (dot(n, dir) > 0.0) n = -n;
+    uint ids[SAMPLES];
+    int seen[SAMPLES];
+    int count = pixelTriangles(ids, seen);
+    if (count == 0) discard;
     float depth = texelFetch(uThickness, ivec2(gl_FragCoord.xy), 0).r;
-    fragColor = liquidShade(vWorld, n, dir, depth, uMeshSigma);
-    writePasses(vWorld, n, vec3(0.0), 1.0);
+    vec4 color = vec4(0.0);
+    int covered = 0, most = 0;
+    TriangleHit passes;
+    for (int i = 0; i < count; ++i) {
+        TriangleHit hit = triangleHit(ids[i]);
+        color += float(seen[i]) * liquidShade(hit.world, hit.normal, hit.dir, depth, uMeshSigma);
+        covered += seen[i];
+        if (seen[i] > most) {
+            most = seen[i];
+            passes = hit;
+        }
+    }
+    fragColor = color / float(covered);
+    writePasses(passes.world, passes.normal, vec3(0.0), 1.0);
 }
 )");
 }

@@ -28,6 +28,8 @@ std::string liquidMeshVertex();
 /// Additive: minus the eye distance of front faces, plus that of back faces, so the sum
 /// over a closed mesh is the length of the eye ray inside it.
 std::string liquidMeshThicknessFragment();
-std::string liquidMeshFragment();
+/// Deferred (triangle_visibility.h): each pixel the front faces cover, shaded once.
+/// @param samples of the frame target.
+std::string liquidMeshFragment(int samples);
 
 }  // namespace globular::shaders

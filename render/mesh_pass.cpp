@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 
 #include "errors.h"
 #include "shaders.h"
@@ -26,15 +27,17 @@ void uploadMeshGeometry(const MeshView& mesh, const gl::Buffer& positions,
     }
 }
 
-MeshPass::MeshPass()
-    : mProgram("mesh", shaders::meshVertex(), shaders::meshFragment()),
+MeshPass::MeshPass(int samples)
+    : mProgram("mesh", shaders::screenRectangleVertex(), shaders::meshFragment(samples)),
       mShadowProgram("mesh shadow", shaders::meshShadowVertex(), shaders::depthOnlyFragment()),
       mVertexArray(gl::makeVertexArray()),
       mPositions(gl::makeBuffer()),
       mNormals(gl::makeBuffer()),
       mValues(gl::makeBuffer()),
       mMaterials(gl::makeBuffer()),
-      mIndices(gl::makeBuffer()) {}
+      mIndices(gl::makeBuffer()),
+      mValueTexture(gl::makeTexture()),
+      mMaterialTexture(gl::makeTexture()) {}
 
 void MeshPass::upload(const MeshView& mesh) {
     const std::size_t indexCount = mesh.triangleCount * 3;
@@ -42,30 +45,27 @@ void MeshPass::upload(const MeshView& mesh) {
     mIndexCount = indexCount;
     glBindVertexArray(mVertexArray.id());
     uploadMeshGeometry(mesh, mPositions, mNormals);
-    if (mesh.values) {
-        glBindBuffer(GL_ARRAY_BUFFER, mValues.id());
-        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.vertexCount * sizeof(float)), mesh.values,
-                     GL_STREAM_DRAW);
-        glVertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
-        glEnableVertexAttribArray(2);
-    } else {
-        glDisableVertexAttribArray(2);
-        glVertexAttrib1f(2, 0);
-    }
-    if (mesh.materials) {
-        glBindBuffer(GL_ARRAY_BUFFER, mMaterials.id());
-        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.vertexCount * sizeof(float)),
-                     mesh.materials, GL_STREAM_DRAW);
-        glVertexAttribPointer(3, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
-        glEnableVertexAttribArray(3);
-    } else {
-        glDisableVertexAttribArray(3);
-        glVertexAttrib1f(3, 0);
-    }
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mIndices.id());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indexCount * sizeof(uint32_t)), mesh.triangles,
                  GL_STREAM_DRAW);
     glBindVertexArray(0);
+    mVisibility.attach(mesh, mPositions, mNormals, mIndices);
+    // The shading reads each vertex's value and material through buffer textures.
+    mHasValues = mesh.values != nullptr;
+    mHasMaterials = mesh.materials != nullptr;
+    const std::pair<const float*, const gl::Buffer*> perVertex[] = {{mesh.values, &mValues},
+                                                                    {mesh.materials, &mMaterials}};
+    const gl::Texture* textures[] = {&mValueTexture, &mMaterialTexture};
+    for (int i = 0; i < 2; ++i) {
+        if (!perVertex[i].first) continue;
+        glBindBuffer(GL_TEXTURE_BUFFER, perVertex[i].second->id());
+        glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(mesh.vertexCount * sizeof(float)),
+                     perVertex[i].first, GL_STREAM_DRAW);
+        glBindTexture(GL_TEXTURE_BUFFER, textures[i]->id());
+        glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, perVertex[i].second->id());
+    }
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
     gl::checkErrors("uploading the mesh");
 }
 
@@ -78,19 +78,20 @@ void MeshPass::drawShadow(const FrameUniforms& f) const {
     glBindVertexArray(0);
 }
 
-void MeshPass::draw(const FrameUniforms& f, Cull cull) const {
+void MeshPass::draw(const FrameUniforms& f, const FrameTarget& target, Cull cull) const {
     if (mIndexCount == 0) return;
+    mVisibility.drawVisibility(f, target, mVertexArray, mIndexCount, cull == Cull::Back);
     glUseProgram(mProgram.id());
     applyFrameUniforms(mProgram, f);
-    glBindVertexArray(mVertexArray.id());
-    if (cull != Cull::None) {
-        glFrontFace(GL_CCW);
-        glCullFace(GL_BACK);
-        glEnable(GL_CULL_FACE);
-    }
-    glDrawElements(GL_TRIANGLES, GLsizei(mIndexCount), GL_UNSIGNED_INT, nullptr);
-    glDisable(GL_CULL_FACE);
-    glBindVertexArray(0);
+    glUniform1i(mProgram.uniform("uHasValues"), mHasValues ? 1 : 0);
+    glUniform1i(mProgram.uniform("uHasMaterials"), mHasMaterials ? 1 : 0);
+    glActiveTexture(GL_TEXTURE5);
+    glBindTexture(GL_TEXTURE_BUFFER, mValueTexture.id());
+    glUniform1i(mProgram.uniform("uValues"), 5);
+    glActiveTexture(GL_TEXTURE6);
+    glBindTexture(GL_TEXTURE_BUFFER, mMaterialTexture.id());
+    glUniform1i(mProgram.uniform("uMaterials"), 6);
+    mVisibility.drawShading(mProgram, f, target, 1);
 }
 
 }  // namespace globular::detail

@@ -1,10 +1,13 @@
 #pragma once
-// Internal to render/: a triangle mesh (the surfacing stage's output) drawn smooth-shaded
-// with its vertex normals, in the camera view and in the key light's shadow map.
+// Internal to render/: a triangle mesh (the surfacing stage's output, or a prop of the
+// set) drawn smooth-shaded with its vertex normals, in the key light's shadow map and, its
+// shading deferred (triangle_visibility.h), in the camera view.
 
+#include "frame_target.h"
 #include "frame_uniforms.h"
 #include "gl_objects.h"
 #include "mesh_view.h"
+#include "triangle_visibility.h"
 
 namespace globular::detail {
 
@@ -15,22 +18,26 @@ void uploadMeshGeometry(const MeshView& mesh, const gl::Buffer& positions,
 
 class MeshPass {
   public:
-    MeshPass();
+    /// @param samples of the frame target it draws into.
+    explicit MeshPass(int samples);
     /// @throw Error when an index is out of range (the GL would read garbage).
     void upload(const MeshView& mesh);
     void drawShadow(const FrameUniforms& frame) const;
-    /// Which faces to skip. Back: half the work for a closed mesh wound counter-clockwise
-    /// seen from outside (the surface stage's), which matters because multisampled
-    /// llvmpipe shades hidden fragments too.
+    /// Which faces to skip. Back: half the visibility pass's work for a closed mesh wound
+    /// counter-clockwise seen from outside (the surface stage's).
     enum class Cull { None, Back };
-    void draw(const FrameUniforms& frame, Cull cull) const;
+    /// Draws into @p target (bound for drawing), which then draws colour.
+    void draw(const FrameUniforms& frame, const FrameTarget& target, Cull cull) const;
 
   private:
     gl::Program mProgram;
     gl::Program mShadowProgram;
     gl::VertexArray mVertexArray;
     gl::Buffer mPositions, mNormals, mValues, mMaterials, mIndices;
+    gl::Texture mValueTexture, mMaterialTexture;
+    TriangleVisibility mVisibility;
     std::size_t mIndexCount = 0;
+    bool mHasValues = false, mHasMaterials = false;
 };
 
 }  // namespace globular::detail

@@ -288,7 +288,7 @@ struct Renderer::Impl {
         light(f, s);
         f.frameSeconds = motionSeconds(s, content.spheres(), target.passes());
         content.prepare(f);
-        while (props.size() < s.props.size()) props.emplace_back();
+        while (props.size() < s.props.size()) props.emplace_back(samples);
         for (std::size_t k = 0; k < s.props.size(); ++k) {
             const TriangleMesh m = s.props[k].seeThrough ? cutaway(s.props[k].mesh, s.camera.position)
                                                          : s.props[k].mesh;
@@ -320,7 +320,7 @@ struct Renderer::Impl {
         if (!isLiquid(content)) content.draw(f);
         for (std::size_t k = 0; k < s.props.size(); ++k) {
             using Cull = detail::MeshPass::Cull;
-            props[k].draw(grey, s.props[k].seeThrough ? Cull::None : Cull::Back);
+            props[k].draw(grey, target, s.props[k].seeThrough ? Cull::None : Cull::Back);
         }
         if (s.render.ground) ground.draw(f, look);
         occlude(f, s, box);
@@ -421,7 +421,7 @@ void Renderer::renderMesh(const MeshView& mesh, const FrameSetup& setup) {
         im.drawLiquidMesh(mesh, setup);
         return;
     }
-    if (!im.mesh) im.mesh.emplace();
+    if (!im.mesh) im.mesh.emplace(im.samples);
     FrameSetup s = setup;
     if (s.render.colorBy == "temperature" && !mesh.values && mesh.vertexCount > 0) {
         throw Error("render: color_by = \"temperature\" but the mesh carries no per-vertex "
@@ -434,18 +434,20 @@ void Renderer::renderMesh(const MeshView& mesh, const FrameSetup& setup) {
     if (s.ramp.empty) s.ramp = own.height;
     struct Content {
         detail::MeshPass& pass;
+        const detail::FrameTarget& target;
         const MeshView& mesh;
         bool spheres() const { return false; }
         void prepare(const FrameUniforms&) { pass.upload(mesh); }
         void shadow(const FrameUniforms& f) { pass.drawShadow(f); }
         void draw(const FrameUniforms& f) {
-            pass.draw(f, mesh.closed ? detail::MeshPass::Cull::Back : detail::MeshPass::Cull::None);
+            using Cull = detail::MeshPass::Cull;
+            pass.draw(f, target, mesh.closed ? Cull::Back : Cull::None);
         }
     };
     std::vector<float> moved;  // the sub-frame's positions, when the mesh has velocities
     im.accumulate(s, [&](const FrameSetup& sub, double seconds, bool passes) {
         const MeshView view = movedBy(mesh, seconds, moved);
-        im.draw(sub, own.box, Content{*im.mesh, view}, passes);
+        im.draw(sub, own.box, Content{*im.mesh, im.target, view}, passes);
     });
 }
 
@@ -540,12 +542,13 @@ void Renderer::Impl::drawFluid(const Globules& globules, const FrameSetup& setup
 }
 
 void Renderer::Impl::drawLiquidMesh(const MeshView& mesh, const FrameSetup& setup) {
-    if (!liquidMesh) liquidMesh.emplace();
+    if (!liquidMesh) liquidMesh.emplace(samples);
     FrameSetup s = setup;
     SceneExtent own;
     if (s.content.empty) own.addPoints(mesh.positions, mesh.vertexCount);
     struct Content {
         detail::LiquidMeshPass& pass;
+        const detail::FrameTarget& target;
         const MeshView& mesh;
         detail::LiquidLook look;
         LiquidOptics optics;
@@ -553,13 +556,13 @@ void Renderer::Impl::drawLiquidMesh(const MeshView& mesh, const FrameSetup& setu
         bool liquid() const { return true; }
         void prepare(const FrameUniforms&) { pass.upload(mesh); }
         void shadow(const FrameUniforms& f) { pass.drawShadow(f); }
-        void draw(const FrameUniforms& f) { pass.draw(f, look, optics); }
+        void draw(const FrameUniforms& f) { pass.draw(f, target, look, optics); }
     };
     std::vector<float> moved;  // the sub-frame's positions, when the mesh has velocities
     accumulate(s, [&](const FrameSetup& sub, double seconds, bool passes) {
         const MeshView view = movedBy(mesh, seconds, moved);
         draw(sub, own.box,
-             Content{*liquidMesh, view, liquidLook(s), opticsOf(s.materialOptics, 0)}, passes);
+             Content{*liquidMesh, target, view, liquidLook(s), opticsOf(s.materialOptics, 0)}, passes);
     });
 }
 

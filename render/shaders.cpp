@@ -233,41 +233,53 @@ std::string fragment(const std::string& body) {
 }
 std::string vertex(const std::string& body) { return version() + kColorLibrary + body; }
 
-std::string meshVertex() {
-    return vertex(R"(
-layout(location = 0) in vec3 aPosition;
-layout(location = 1) in vec3 aNormal;  // (0, 0, 0) when the mesh has none
-layout(location = 2) in float aValue;  // material or temperature; 0 when the mesh has none
-layout(location = 3) in float aMaterial;  // material index; 0 when the mesh has none
-uniform mat4 uViewProj;
-out vec3 vWorld;
-out vec3 vNormal;
-out vec3 vAlbedo;
-flat out float vMaterial;
-void main() {
-    vWorld = aPosition;
-    vNormal = aNormal;
-    vMaterial = aMaterial;
-    vAlbedo = albedoFor(uColorMode == 2 ? aPosition.y : aValue);
-    gl_Position = uViewProj * vec4(aPosition, 1.0);
-}
-)");
+// Deferred (triangle_visibility.h): each pixel the mesh covers shaded once. The base
+// colour is the vertices' colours (each its value through the ramp) interpolated, as the
+// rasteriser interpolated them; the material is the triangle's last vertex's, as a flat
+// attribute's (GL's provoking vertex).
+std::string meshFragment(int samples) {
+    return fragment(cameraRayLibrary() + triangleHitLibrary(samples) + R"(
+uniform samplerBuffer uValues;     // material or temperature per vertex, when uHasValues
+uniform samplerBuffer uMaterials;  // material index per vertex, when uHasMaterials
+uniform int uHasValues;
+uniform int uHasMaterials;
+layout(location = 0) out vec4 fragColor;
+
+vec3 vertexAlbedo(uint k) {
+    float value = uColorMode == 2    ? texelFetch(uPositions, int(k)).y
+                  : uHasValues != 0 ? texelFetch(uValues, int(k)).r
+                                    : 0.0;
+    return albedoFor(value);
 }
 
-std::string meshFragment() {
-    return fragment(R"(
-in vec3 vWorld;
-in vec3 vNormal;
-in vec3 vAlbedo;
-flat in float vMaterial;
-layout(location = 0) out vec4 fragColor;
+// Two-sided: an open or inward-wound mesh still shades from the side we see.
+vec3 shadeHit(TriangleHit hit) {
+    vec3 albedo = hit.weights.x * vertexAlbedo(hit.vertices.x) +
+                  hit.weights.y * vertexAlbedo(hit.vertices.y) +
+                  hit.weights.z * vertexAlbedo(hit.vertices.z);
+    float material = uHasMaterials != 0 ? texelFetch(uMaterials, int(hit.vertices.z)).r : 0.0;
+    return shadeMaterial(hit.world, hit.normal, albedo, material);
+}
+
 void main() {
-    vec3 n = dot(vNormal, vNormal) > 0.25 ? normalize(vNormal)
-                                          : normalize(cross(dFdx(vWorld), dFdy(vWorld)));
-    // Two-sided: an open or inward-wound mesh still shades from the side we see.
-    if (dot(n, uEye - vWorld) < 0.0) n = -n;
-    fragColor = vec4(shadeMaterial(vWorld, n, vAlbedo, vMaterial), 1.0);
-    writePasses(vWorld, n, vec3(0.0), 1.0);
+    uint ids[SAMPLES];
+    int seen[SAMPLES];
+    int count = pixelTriangles(ids, seen);
+    if (count == 0) discard;
+    vec3 color = vec3(0.0);
+    int covered = 0, most = 0;
+    TriangleHit passes;
+    for (int i = 0; i < count; ++i) {
+        TriangleHit hit = triangleHit(ids[i]);
+        color += float(seen[i]) * shadeHit(hit);
+        covered += seen[i];
+        if (seen[i] > most) {
+            most = seen[i];
+            passes = hit;
+        }
+    }
+    fragColor = vec4(color / float(covered), 1.0);
+    writePasses(passes.world, passes.normal, vec3(0.0), 1.0);
 }
 )");
 }

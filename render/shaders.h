@@ -15,12 +15,25 @@ std::string fragment(const std::string& body);
 /// @p body after the version and the colour ramp (albedoFor()).
 std::string vertex(const std::string& body);
 
-std::string meshVertex();
-std::string meshFragment();
+/// A mesh's shading, deferred (triangle_visibility.h). @param samples of the frame target.
+std::string meshFragment(int samples);
 std::string meshShadowVertex();
 std::string depthOnlyFragment();
 std::string groundVertex();
 std::string groundFragment();
+
+// triangle_shaders.cpp: a mesh's deferred shading (triangle_visibility.h)
+/// Positions (attribute 0) through uViewProj.
+std::string positionVertex();
+/// 1 + the triangle's index (gl_PrimitiveID) at location 1, the id buffer.
+std::string triangleIdFragment();
+/// A rectangle of the screen (uniform uRectangle, NDC) as a four-vertex triangle strip.
+std::string screenRectangleVertex();
+/// pixelTriangles(): the triangles the id buffer holds at the pixel, and triangleHit():
+/// one of them interpolated where the pixel's eye ray meets it. Needs cameraRayLibrary()
+/// and uEye before it.
+/// @param samples of the id buffer it reads (1: not multisampled).
+std::string triangleHitLibrary(int samples);
 
 // sphere_shaders.cpp
 /// cameraRay(windowPosition) through uCamForward/Right/Up and uViewport, and

@@ -171,6 +171,46 @@ TEST(LiquidRender, AbsorbingSlabTransmitsExpMinusSigmaD) {
     }
 }
 
+// The mesh is shaded deferred: each pixel from the triangle its id buffer names,
+// interpolated where the pixel's eye ray meets that triangle's plane. The passes then
+// hold that exact point: its distance from the eye and the face's normal, with the
+// mesh's normals and (faceted) without them.
+TEST(LiquidRender, MeshPassesHoldTheExactPointWherePixelRaysMeetTheSurface) {
+    constexpr int kW = 81, kH = 61;  // odd: the centre column's rays lie in the plane x = 0.5
+    const double height = 1.5;
+    const Box slab({-60, 0, -60}, {60, height, 60});
+    FrameSetup s = liquidSetup({0.5, 6, 10}, {0.5, 0, 0}, {0.1, 0.1, 0.1});
+    MeshView faceted = slab.view();
+    faceted.normals = nullptr;
+    std::vector<float> colours[2];
+    for (const MeshView& mesh : {slab.view(), faceted}) {
+        SCOPED_TRACE(mesh.normals ? "with normals" : "faceted");
+        Renderer renderer(kW, kH, 4, 1024, true);
+        renderer.drawMesh(mesh, s);
+        const LinearFrame& f = renderer.lastFrame();
+        ASSERT_TRUE(f.hasPasses());
+        int checked = 0;
+        for (int y = 0; y < kH; ++y) {
+            const Vec3 d = centreColumnRay(s.camera, kW, kH, y + 0.5);
+            if (d.y >= 0) continue;  // the sky
+            const double expected = (height - s.camera.position.y) / d.y;
+            const std::size_t i = std::size_t(kH - 1 - y) * kW + kW / 2;
+            ASSERT_NE(f.depth[i], LinearFrame::kNothing) << "row " << y;
+            EXPECT_NEAR(f.depth[i], expected, 1e-4 * expected) << "row " << y;
+            EXPECT_NEAR(f.normal[3 * i + 1], 1.0, 1e-5) << "row " << y;
+            ++checked;
+        }
+        EXPECT_GT(checked, kH / 3);
+        colours[mesh.normals ? 0 : 1] = f.rgba;
+    }
+    // Flat faces: the face normal is the vertices' normal, so the frames agree.
+    double largest = 0;
+    for (std::size_t k = 0; k < colours[0].size(); ++k) {
+        largest = std::max(largest, double(std::abs(colours[0][k] - colours[1][k])));
+    }
+    EXPECT_LT(largest, 1e-3);
+}
+
 /// A block of globules: 24 x 3 x 24 of radius 1 on a grid of 0.8, its top at y = 3.1.
 Globules block() {
     Globules g;
