@@ -11,7 +11,7 @@ LiquidMeshPass::LiquidMeshPass(int samples)
     : mThickness("liquid mesh thickness", shaders::liquidMeshVertex(),
                  shaders::liquidMeshThicknessFragment()),
       mShade("liquid mesh", shaders::screenRectangleVertex(), shaders::liquidMeshFragment(samples)),
-      mShadow("liquid mesh shadow", shaders::meshShadowVertex(), shaders::depthOnlyFragment()),
+      mShadow("liquid mesh shadow", shaders::positionVertex(), shaders::depthOnlyFragment()),
       mVertexArray(gl::makeVertexArray()),
       mPositions(gl::makeBuffer()),
       mNormals(gl::makeBuffer()),
@@ -35,7 +35,7 @@ void LiquidMeshPass::upload(const MeshView& mesh) {
 void LiquidMeshPass::drawShadow(const FrameUniforms& f) const {
     if (mIndexCount == 0) return;
     glUseProgram(mShadow.id());
-    setMat4(mShadow, "uLightViewProj", f.lightViewProj);
+    setMat4(mShadow, "uViewProj", f.lightViewProj);
     glBindVertexArray(mVertexArray.id());
     glDrawElements(GL_TRIANGLES, GLsizei(mIndexCount), GL_UNSIGNED_INT, nullptr);
     glBindVertexArray(0);

@@ -29,7 +29,7 @@ void uploadMeshGeometry(const MeshView& mesh, const gl::Buffer& positions,
 
 MeshPass::MeshPass(int samples)
     : mProgram("mesh", shaders::screenRectangleVertex(), shaders::meshFragment(samples)),
-      mShadowProgram("mesh shadow", shaders::meshShadowVertex(), shaders::depthOnlyFragment()),
+      mShadowProgram("mesh shadow", shaders::positionVertex(), shaders::depthOnlyFragment()),
       mVertexArray(gl::makeVertexArray()),
       mPositions(gl::makeBuffer()),
       mNormals(gl::makeBuffer()),
@@ -72,7 +72,7 @@ void MeshPass::upload(const MeshView& mesh) {
 void MeshPass::drawShadow(const FrameUniforms& f) const {
     if (mIndexCount == 0) return;
     glUseProgram(mShadowProgram.id());
-    setMat4(mShadowProgram, "uLightViewProj", f.lightViewProj);
+    setMat4(mShadowProgram, "uViewProj", f.lightViewProj);
     glBindVertexArray(mVertexArray.id());
     glDrawElements(GL_TRIANGLES, GLsizei(mIndexCount), GL_UNSIGNED_INT, nullptr);
     glBindVertexArray(0);

@@ -284,14 +284,6 @@ void main() {
 )");
 }
 
-std::string meshShadowVertex() {
-    return version() + R"(
-layout(location = 0) in vec3 aPosition;
-uniform mat4 uLightViewProj;
-void main() { gl_Position = uLightViewProj * vec4(aPosition, 1.0); }
-)";
-}
-
 std::string depthOnlyFragment() { return version() + "void main() {}\n"; }
 
 std::string groundVertex() {

@@ -17,13 +17,13 @@ std::string vertex(const std::string& body);
 
 /// A mesh's shading, deferred (triangle_visibility.h). @param samples of the frame target.
 std::string meshFragment(int samples);
-std::string meshShadowVertex();
 std::string depthOnlyFragment();
 std::string groundVertex();
 std::string groundFragment();
 
 // triangle_shaders.cpp: a mesh's deferred shading (triangle_visibility.h)
-/// Positions (attribute 0) through uViewProj.
+/// Positions (attribute 0) through uViewProj: a mesh's faces in the camera's view or, with
+/// the light's matrix, in the shadow map.
 std::string positionVertex();
 /// 1 + the triangle's index (gl_PrimitiveID) at location 1, the id buffer.
 std::string triangleIdFragment();
