@@ -4,7 +4,6 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -71,25 +70,6 @@ Extent extentOf(const Globules& g) {
         });
 }
 
-/// The most globules in one cube of edge @p cell: counted per hashed cell, so that a
-/// collision merges two cells' counts (an overestimate, never an underestimate).
-uint32_t mostCrowded(const Globules& g, double cell) {
-    const std::size_t slots = std::bit_ceil(std::max<std::size_t>(g.size(), 64));
-    std::vector<uint32_t> count(slots, 0);
-    const double inv = 1.0 / cell;
-    uint32_t most = 0;
-    for (std::size_t i = 0; i < g.size(); ++i) {
-        const auto coord = [&](float v) {
-            const double c = std::floor(double(v) * inv);
-            return c == c ? uint64_t(int64_t(std::clamp(c, -1e15, 1e15))) : 0;  // NaN: cell 0
-        };
-        const uint64_t key = coord(g.px[i]) * 73856093u ^ coord(g.py[i]) * 19349663u ^
-                             coord(g.pz[i]) * 83492791u;
-        most = std::max(most, ++count[(key ^ (key >> 29)) & (slots - 1)]);
-    }
-    return most;
-}
-
 }  // namespace
 
 StableStep::StableStep(const SimulationSetup& setup) {
@@ -151,13 +131,14 @@ double StableStep::contactBound(double density, double mass, double radius,
     return bound;
 }
 
-StableStep::Bound StableStep::bound(const Globules& g) const {
+StableStep::Bound StableStep::bound(const Globules& g) {
     Bound b;
     b.contact = b.speed = INFINITY;
     if (g.empty()) return b;
     const Extent e = extentOf(g);
     const double cell = double(mReach) * 2 * e.largestRadius;
-    const double density = double(mostCrowded(g, cell)) / (cell * cell * cell);
+    const uint32_t most = mCrowded.most(g.px.data(), g.py.data(), g.pz.data(), g.size(), cell);
+    const double density = double(most) / (cell * cell * cell);
     b.contact = contactBound(density, e.smallestMass, e.largestRadius, mSmallestHeatCapacity);
     if (e.fastest2 > 0) b.speed = kSpeedFraction * e.smallestRadius / std::sqrt(double(e.fastest2));
     return b;

@@ -20,6 +20,7 @@
 
 #include <vector>
 
+#include "crowded_cell.h"
 #include "globules.h"
 #include "material_pairs.h"
 
@@ -43,9 +44,9 @@ public:
         double step() const { return kSafety * (contact < speed ? contact : speed); }
     };
     /// The bound for @p globules as they stand. The density is the most crowded cell's
-    /// (cells one search reach wide, counted through a hash table whose collisions can
-    /// only add to a count: never an underestimate), in any order of the globules.
-    Bound bound(const Globules& globules) const;
+    /// (cells one search reach wide, counted exactly: CrowdedCell), in any order of the
+    /// globules. Not for concurrent calls on one object (the count's table is reused).
+    Bound bound(const Globules& globules);
 
     /// The contact bound in a medium of @p density globules per unit volume, for the
     /// scene's lightest globule, largest radius and most conductive material.
@@ -57,6 +58,7 @@ private:
     double mConductance = 0;            ///< largest; 0 without temperature
     double mSmallestHeatCapacity = 1;   ///< per unit mass
     float mReach = 3;                   ///< of the neighbour search, in r_i + r_j
+    CrowdedCell mCrowded;               ///< the densest cell's count
 };
 
 }  // namespace globular

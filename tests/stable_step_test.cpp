@@ -4,8 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
+#include <limits>
+#include <random>
+#include <vector>
 
 #include "reporter.h"
 #include "simulation.h"
@@ -52,6 +57,38 @@ SimulationSetup drop(int count, bool adaptive, double dt) {
     return setup;
 }
 
+/// Points in a block of 24^3 cubes of edge @p cell, some below zero, @p each in every cube
+/// at random places inside it and @p crowded more in the cube (5, -3, 7).
+std::vector<std::array<float, 3>> latticeOfCubes(double cell, int each, int crowded) {
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> inside(0.05, 0.95);
+    std::vector<std::array<float, 3>> points;
+    const auto addIn = [&](int i, int j, int k) {
+        points.push_back({float((i + inside(random)) * cell), float((j + inside(random)) * cell),
+                          float((k + inside(random)) * cell)});
+    };
+    for (int i = -12; i < 12; ++i) {
+        for (int j = -12; j < 12; ++j) {
+            for (int k = -12; k < 12; ++k) {
+                for (int e = 0; e < each; ++e) addIn(i, j, k);
+            }
+        }
+    }
+    for (int e = 0; e < crowded; ++e) addIn(5, -3, 7);
+    return points;
+}
+
+uint32_t mostOf(const std::vector<std::array<float, 3>>& points, double cell) {
+    std::vector<float> x, y, z;
+    for (const auto& p : points) {
+        x.push_back(p[0]);
+        y.push_back(p[1]);
+        z.push_back(p[2]);
+    }
+    CrowdedCell count;
+    return count.most(x.data(), y.data(), z.data(), points.size(), cell);
+}
+
 Vec3 centroidOf(const Globules& g) {
     Vec3 c{0, 0, 0};
     for (std::size_t i = 0; i < g.size(); ++i) c = c + g.position(i);
@@ -79,7 +116,7 @@ TEST(StableStep, TheBoundIsSemiImplicitEulersExactStabilityLimit) {
 }
 
 TEST(StableStep, DenserMediaAndFasterGlobulesShortenTheStep) {
-    const StableStep stable(drop(8, true, 0.01));
+    StableStep stable(drop(8, true, 0.01));
     const double sparse = stable.contactBound(0.05, 1, 0.5, 1);
     const double dense = stable.contactBound(0.5, 1, 0.5, 1);
     EXPECT_LT(dense, sparse);
@@ -90,6 +127,50 @@ TEST(StableStep, DenserMediaAndFasterGlobulesShortenTheStep) {
     // The fastest crosses a tenth of the smallest radius in one step.
     EXPECT_NEAR(fast.speed, StableStep::kSpeedFraction * 0.5 / 50, 1e-12);
     EXPECT_DOUBLE_EQ(fast.step(), StableStep::kSafety * std::min(fast.speed, fast.contact));
+}
+
+TEST(CrowdedCell, CountsTheMostCrowdedCubeExactly) {
+    // 13 824 cubes of 3 points and one of 3 + 4: a count merged with any other cube's shows.
+    const double cell = 3.5;
+    const auto points = latticeOfCubes(cell, 3, 4);
+    EXPECT_EQ(mostOf(points, cell), 7u);
+    EXPECT_EQ(mostOf(latticeOfCubes(cell, 3, 0), cell), 3u);
+    // Cubes twice as wide hold 8 of the small ones.
+    EXPECT_EQ(mostOf(points, 2 * cell), 8u * 3 + 4);
+}
+
+TEST(CrowdedCell, TheCountDoesNotDependOnTheOrder) {
+    auto points = latticeOfCubes(1.0, 2, 9);
+    const uint32_t inOrder = mostOf(points, 1.0);
+    std::shuffle(points.begin(), points.end(), std::mt19937(3));
+    EXPECT_EQ(mostOf(points, 1.0), inOrder);
+    std::reverse(points.begin(), points.end());
+    EXPECT_EQ(mostOf(points, 1.0), inOrder);
+}
+
+TEST(CrowdedCell, NonFiniteAndFarPointsShareCubesAndNeverLowerTheCount) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    CrowdedCell count;
+    const std::vector<float> x{nan, 0.5f, 0.2f, 1e30f, inf, 2e30f}, y{0, 0.5f, nan, 0, 0, 0},
+        z{0, 0.5f, 0.3f, 0, 0, 0};
+    // Cube 0 holds the point at (0.5, 0.5, 0.5) and the two with a NaN coordinate; the
+    // three far ones share the outermost cube in x.
+    EXPECT_EQ(count.most(x.data(), y.data(), z.data(), 3, 1.0), 3u);
+    EXPECT_EQ(count.most(x.data(), y.data(), z.data(), 6, 1.0), 3u);
+    EXPECT_EQ(count.most(x.data(), y.data(), z.data(), 0, 1.0), 0u);
+}
+
+TEST(StableStep, TheContactBoundFollowsTheDensestCellsTrueCount) {
+    // A block of cells of 3 globules with one of 3 + 4: the bound is that of 7 per cell.
+    SimulationSetup setup = drop(8, true, 0.01);
+    StableStep stable(setup);
+    // Cells one search reach wide: the reach in r_i + r_j, for radius 1.
+    const double cell = 2.0 * PairTable(setup.materials(), setup.materialPairs).cutoff(1.0f);
+    Globules g;
+    for (const auto& p : latticeOfCubes(cell, 3, 4)) g.add({p[0], p[1], p[2]}, {0, 0, 0}, 1.0f, 1, 0);
+    const double expected = stable.contactBound(7 / (cell * cell * cell), 1, 1, 1);
+    EXPECT_NEAR(stable.bound(g).contact, expected, 1e-12 * expected);
 }
 
 TEST(AdaptiveStepping, FramesEndOnTheirInstantsWithFewerSteps) {
