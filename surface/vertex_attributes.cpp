@@ -36,6 +36,21 @@ void candidatesNear(const GlobuleBins& bins, uint64_t key, std::vector<Candidate
     });
 }
 
+/// Those of @p all whose influence sphere meets the box [@p lo, @p hi] (index space), in
+/// their order, into @p out. Exact as a filter: per axis the box's nearest point lies
+/// between the centre and any point in the box, so its distance, rounded, is never larger
+/// than a vertex's, and no candidate that reaches a vertex in the box is dropped.
+void candidatesMeeting(const std::vector<Candidate>& all, const double lo[3], const double hi[3],
+                       std::vector<Candidate>& out) {
+    out.clear();
+    for (const Candidate& c : all) {
+        const double dx = c.x - std::clamp(c.x, lo[0], hi[0]);
+        const double dy = c.y - std::clamp(c.y, lo[1], hi[1]);
+        const double dz = c.z - std::clamp(c.z, lo[2], hi[2]);
+        if (dx * dx + dy * dy + dz * dz < c.r2) out.push_back(c);
+    }
+}
+
 /// The globules of @p candidates whose influence reaches index-space point @p p, with
 /// their weights, in the candidates' order; @p nearest: the closest candidate (any
 /// distance), or UINT32_MAX.
@@ -150,19 +165,37 @@ void carryGlobuleAttributes(TriangleMesh& mesh, const Globules& globules,
 
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groupStart.size() - 1, 4), [&](auto groups) {
         std::vector<Weighted> near;
-        std::vector<Candidate> candidates;
+        std::vector<Candidate> candidates, reaching;
         std::vector<double> perMaterial(materials);
+        const auto indexPoint = [&](std::size_t v, double p[3]) {
+            for (int a = 0; a < 3; ++a) p[a] = mesh.positions[3 * v + a] * toIndex;
+        };
         for (std::size_t group = groups.begin(); group < groups.end(); ++group) {
             candidatesNear(bins, byBlock[groupStart[group]].first, candidates);
+            // The block's candidates come from every block within the largest influence
+            // of it; few reach the block's vertices. Those that may are tested per vertex.
+            double lo[3], hi[3];
+            indexPoint(byBlock[groupStart[group]].second, lo);
+            std::copy(lo, lo + 3, hi);
+            for (std::size_t k = groupStart[group] + 1; k < groupStart[group + 1]; ++k) {
+                double p[3];
+                indexPoint(byBlock[k].second, p);
+                for (int a = 0; a < 3; ++a) {
+                    lo[a] = std::min(lo[a], p[a]);
+                    hi[a] = std::max(hi[a], p[a]);
+                }
+            }
+            candidatesMeeting(candidates, lo, hi, reaching);
             for (std::size_t k = groupStart[group]; k < groupStart[group + 1]; ++k) {
                 const std::size_t v = byBlock[k].second;
-                const double p[3] = {mesh.positions[3 * v] * toIndex,
-                                     mesh.positions[3 * v + 1] * toIndex,
-                                     mesh.positions[3 * v + 2] * toIndex};
+                double p[3];
+                indexPoint(v, p);
                 uint32_t nearest;
-                gather(candidates, kernel, p, near, nearest);
-                if (near.empty() && nearest != std::numeric_limits<uint32_t>::max()) {
-                    near.push_back({nearest, 1.0f});
+                gather(reaching, kernel, p, near, nearest);
+                if (near.empty()) {
+                    // None reaches it: the nearest of all the block's candidates stands in.
+                    gather(candidates, kernel, p, near, nearest);
+                    if (nearest != std::numeric_limits<uint32_t>::max()) near.push_back({nearest, 1.0f});
                 }
                 means.set(v, near, perMaterial);
             }

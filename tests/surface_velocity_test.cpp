@@ -10,6 +10,7 @@
 #include "mesh.h"
 #include "surface_frame.h"
 #include "surface_grids.h"
+#include "vertex_attributes.h"
 
 namespace globular {
 namespace {
@@ -210,6 +211,42 @@ TEST(SurfaceVelocity, VelGridAndMeshVelocityTravelInTheFiles) {
     ASSERT_EQ(mesh.vertexCount(), frame.mesh.vertexCount());
     EXPECT_EQ(valuesOf(mesh, "vy"), valuesOf(frame.mesh, "vy"));
     for (float y : valuesOf(mesh, "vy")) ASSERT_NEAR(y, 3.0f, 1e-5f);
+}
+
+// Vertices placed by hand, not by the mesher: within one block, some reached by one globule
+// only, some by both, one by neither (but near one). Each gets the kernel-weighted mean of exactly those
+// that reach it (the block's candidates are filtered by the block's box first, which must
+// drop none that reaches a vertex), and the unreached one its nearest globule's velocity.
+TEST(SurfaceVelocity, HandPlacedVerticesGetTheGlobulesThatReachThem) {
+    Globules g;
+    g.add({0, 0, 0}, {1, 0, 0}, 1.0f, 1.0f, 0);    // reaches 2 units
+    g.add({3.5, 0, 0}, {0, 4, 0}, 1.0f, 1.0f, 1);  // reaches 1.5 to 5.5 on the x axis
+    g.add({-9, 0, 0}, {0, 0, 8}, 0.5f, 1.0f, 2);   // reaches -10 to -8: none of the vertices
+    const SurfaceSettings s = coarse();
+    const MetaballKernel kernel = s.metaballKernel();
+    TriangleMesh mesh;
+    const std::vector<float> xs = {0.5f, 1.0f, 1.75f, 3.0f, -2.5f};
+    for (float x : xs) mesh.positions.insert(mesh.positions.end(), {x, 0.1f, 0.0f});
+    CarriedAttributes which;
+    which.velocity = true;
+    carryGlobuleAttributes(mesh, g, kernel, s.influence, 0.35, which);
+    const auto& vx = valuesOf(mesh, "vx");
+    const auto& vy = valuesOf(mesh, "vy");
+    const auto& vz = valuesOf(mesh, "vz");
+    for (std::size_t i = 0; i + 1 < xs.size(); ++i) {
+        const Vec3 expected = weightedMean(g, s, {xs[i], 0.1, 0.0});
+        EXPECT_NEAR(vx[i], expected.x, 1e-5) << xs[i];
+        EXPECT_NEAR(vy[i], expected.y, 1e-5) << xs[i];
+        EXPECT_NEAR(vz[i], expected.z, 1e-5) << xs[i];
+    }
+    EXPECT_FLOAT_EQ(vx[0], 1.0f);                     // the first globule's alone
+    EXPECT_GT(vx[2], 0.05f);                          // both reach 1.75
+    EXPECT_GT(vy[2], 0.05f);
+    EXPECT_FLOAT_EQ(vy[3], 4.0f);                     // the second's alone
+    // -2.5 is 2.5 from the first globule and 6.5 from the third: none reaches it, and the
+    // nearest of its block's candidates (the globules binned within one block) is the first.
+    EXPECT_FLOAT_EQ(vx[4], 1.0f);
+    EXPECT_FLOAT_EQ(vz[4], 0.0f);
 }
 
 }  // namespace
