@@ -4,6 +4,7 @@
 
 #include "color_ramp.h"
 #include "environment_light.h"
+#include "shadow_map.h"
 #include "shaders.h"
 
 namespace globular::detail {
@@ -51,7 +52,7 @@ void applyFrameUniforms(const gl::Program& p, const FrameUniforms& f) {
     glUniform1f(p.uniform("uEnvironmentIntensity"), f.environmentIntensity);
     glUniform1f(p.uniform("uShadowSoftness"), f.shadowSoftness);
     glUniform1i(p.uniform("uShadowed"), f.shadowed ? 1 : 0);
-    glUniform1i(p.uniform("uShadowMap"), 0);
+    glUniform1i(p.uniform("uShadowMap"), kShadowMapUnit);
     setMat4(p, "uLightViewProj", f.lightViewProj);
     glUniform1f(p.uniform("uShadowTexel"), f.shadowTexel);
     glUniform1f(p.uniform("uShadowBias"), f.shadowBias);

@@ -44,8 +44,9 @@ struct FrameUniforms {
     float frameSeconds = 0;    ///< the motion pass's interval (1/fps); 0: no motion pass
 };
 
-/// Sets the shared uniforms of @p program (which must be in use); shadow map on unit 0,
-/// the environment's cube map on kEnvironmentUnit (environment_light.h).
+/// Sets the shared uniforms of @p program (which must be in use); the shadow map on
+/// kShadowMapUnit (shadow_map.h), the environment's cube map on kEnvironmentUnit
+/// (environment_light.h).
 void applyFrameUniforms(const gl::Program& program, const FrameUniforms& frame);
 
 void setVec3(const gl::Program& program, const char* name, Vec3 value);

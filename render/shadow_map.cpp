@@ -52,8 +52,9 @@ void ShadowMap::beginDrawing(int size) {
 }
 
 void ShadowMap::bindForSampling() const {
-    glActiveTexture(GL_TEXTURE0);
+    glActiveTexture(GL_TEXTURE0 + kShadowMapUnit);
     glBindTexture(GL_TEXTURE_2D, mDepth.id());
+    glActiveTexture(GL_TEXTURE0);
 }
 
 }  // namespace globular::detail

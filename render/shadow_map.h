@@ -6,6 +6,12 @@
 
 namespace globular::detail {
 
+/// The shadow map's texture unit, its own: passes create their textures on first use
+/// (binding and unbinding them on the active unit, 0), and a map kept on unit 0 was then
+/// unbound for the first frame a renderer drew (the liquid's glints missing from the first
+/// frame of every range).
+inline constexpr int kShadowMapUnit = 14;
+
 class ShadowMap {
   public:
     /// @param maxSize the most texels per side a frame may use
@@ -18,7 +24,7 @@ class ShadowMap {
     /// Binds the map, @p size texels per side, as the render target; clears it to the
     /// far plane.
     void beginDrawing(int size);
-    /// Binds the map to texture unit 0 for the shading passes.
+    /// Binds the map to kShadowMapUnit for the shading passes; unit 0 is left active.
     void bindForSampling() const;
     int size() const { return mSize; }
 

@@ -10,41 +10,13 @@
 #include <numbers>
 #include <vector>
 
+#include "box_mesh.h"
 #include "renderer.h"
 
 namespace globular {
 namespace {
 
 constexpr double kIor = 1.33;
-
-/// A closed box, four vertices per face with its normal, wound counter-clockwise seen
-/// from outside.
-struct Box {
-    std::vector<float> positions, normals;
-    std::vector<uint32_t> triangles;
-    Box(Vec3 lo, Vec3 hi) {
-        auto face = [&](Vec3 n, Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
-            const auto base = uint32_t(positions.size() / 3);
-            for (Vec3 v : {a, b, c, d}) {
-                positions.insert(positions.end(), {float(v.x), float(v.y), float(v.z)});
-                normals.insert(normals.end(), {float(n.x), float(n.y), float(n.z)});
-            }
-            // a b c d run counter-clockwise around n
-            triangles.insert(triangles.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
-        };
-        const double x0 = lo.x, y0 = lo.y, z0 = lo.z, x1 = hi.x, y1 = hi.y, z1 = hi.z;
-        face({0, 1, 0}, {x0, y1, z0}, {x0, y1, z1}, {x1, y1, z1}, {x1, y1, z0});
-        face({0, -1, 0}, {x0, y0, z0}, {x1, y0, z0}, {x1, y0, z1}, {x0, y0, z1});
-        face({1, 0, 0}, {x1, y0, z0}, {x1, y1, z0}, {x1, y1, z1}, {x1, y0, z1});
-        face({-1, 0, 0}, {x0, y0, z0}, {x0, y0, z1}, {x0, y1, z1}, {x0, y1, z0});
-        face({0, 0, 1}, {x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1});
-        face({0, 0, -1}, {x0, y0, z0}, {x0, y1, z0}, {x1, y1, z0}, {x1, y0, z0});
-    }
-    MeshView view() const {
-        return {positions.data(), normals.data(), positions.size() / 3, triangles.data(),
-                triangles.size() / 3, true};
-    }
-};
 
 /// A frame with no lights (the sky alone lights the ground evenly), a checker of 1 unit.
 FrameSetup liquidSetup(Vec3 eye, Vec3 target, Vec3 sigma) {
@@ -126,7 +98,7 @@ double measuredEdge(const LinearFrame& f, double near, int reach) {
 TEST(LiquidRender, ClearSlabShiftsTheCheckerAsSnellsLawPredicts) {
     constexpr int kW = 161, kH = 121;  // odd: the centre column's pixel centres lie on x = 0.5
     const double height = 1.5;
-    const Box slab({-60, 0, -60}, {60, height, 60});
+    const BoxMesh slab({-60, 0, -60}, {60, height, 60});
     // x = 0.5: the middle of a checker column, so only the edges across z show.
     FrameSetup s = liquidSetup({0.5, 6, 10}, {0.5, 0, 0}, {0, 0, 0});
     Renderer renderer(kW, kH, 4);
@@ -142,10 +114,34 @@ TEST(LiquidRender, ClearSlabShiftsTheCheckerAsSnellsLawPredicts) {
     }
 }
 
+TEST(LiquidRender, RenderersFirstFrameHasTheKeyLightsGlint) {
+    // The key light mirrored about the slab's top at its centre: its glint lies there, in
+    // the image's centre, where the key light's visibility (the shadow map) lets it
+    // through. The passes create their textures on a renderer's first frame; that once
+    // unbound the shadow map, and the first frame of every range came out without glints.
+    constexpr int kW = 161, kH = 121;
+    const BoxMesh slab({-3, 0, -3}, {3, 1, 3});
+    const Vec3 eye{0, 5, 8}, top{0, 1, 0};
+    const Vec3 view = normalized(top - eye);
+    FrameSetup s = liquidSetup(eye, top, {0.2, 0.1, 0.05});
+    LightSettings key;
+    key.direction = -1.0 * Vec3{view.x, -view.y, view.z};  // travels down to the top, mirrored
+    s.lights = {key};
+    Renderer renderer(kW, kH, 4);
+    renderer.drawMesh(slab.view(), s);
+    const LinearFrame first = renderer.lastFrame();
+    renderer.drawMesh(slab.view(), s);
+    const LinearFrame& second = renderer.lastFrame();
+    const double glint = luminance(second, kW / 2, kH / 2);
+    ASSERT_GT(glint, luminance(second, kW / 2 + 8, kH / 2) + 0.2) << "the glint must stand out";
+    EXPECT_NEAR(luminance(first, kW / 2, kH / 2), glint, 1e-6);
+    EXPECT_TRUE(first.rgba == second.rgba) << "the same frame drawn twice must match";
+}
+
 TEST(LiquidRender, AbsorbingSlabTransmitsExpMinusSigmaD) {
     constexpr int kW = 81, kH = 61;  // odd: the centre pixel's ray goes to the target
     const double height = 2;
-    const Box slab({-40, 0, -40}, {40, height, 40});
+    const BoxMesh slab({-40, 0, -40}, {40, height, 40});
     const Vec3 eye{0.5, 8, 2.5}, target{0.5, 0, 0.5};
     // The centre ray's path inside the slab: along the refracted ray to the ground.
     const Vec3 d = normalized(target - eye);
@@ -178,7 +174,7 @@ TEST(LiquidRender, AbsorbingSlabTransmitsExpMinusSigmaD) {
 TEST(LiquidRender, MeshPassesHoldTheExactPointWherePixelRaysMeetTheSurface) {
     constexpr int kW = 81, kH = 61;  // odd: the centre column's rays lie in the plane x = 0.5
     const double height = 1.5;
-    const Box slab({-60, 0, -60}, {60, height, 60});
+    const BoxMesh slab({-60, 0, -60}, {60, height, 60});
     FrameSetup s = liquidSetup({0.5, 6, 10}, {0.5, 0, 0}, {0.1, 0.1, 0.1});
     MeshView faceted = slab.view();
     faceted.normals = nullptr;

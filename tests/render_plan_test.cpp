@@ -8,9 +8,11 @@
 #include <fstream>
 #include <sstream>
 
+#include "box_mesh.h"
 #include "errors.h"
 #include "frame_paths.h"
 #include "globule_cache.h"
+#include "mesh.h"
 #include "recording_reporter.h"
 #include "render_stage.h"
 
@@ -93,6 +95,40 @@ TEST(RenderPlan, SplitRenderIsByteIdenticalToOneRun) {
     EXPECT_EQ(plan.firstFrame, 1);
     EXPECT_EQ(plan.lastFrame, kFrames);
     EXPECT_TRUE(plan.automaticCamera);
+}
+
+TEST(RenderPlan, SplitLiquidRenderIsByteIdenticalToOneRun) {
+    // The surface drawn as a liquid under the shadowing key light: a chunk's first frame
+    // is its renderer's first, when the liquid's passes create their textures (which once
+    // unbound the shadow map, and the first frame of each chunk lost the key light).
+    RenderJob job = splitJob();
+    job.render.mode = "surface";
+    job.render.colorBy = "constant";
+    job.materialOptics = {LiquidOptics{}};
+    // The camera fixed, and the key light mirrored about the slab's top at its centre:
+    // its glint lies there, in the frame's middle (as in LiquidRender's test of it).
+    const Vec3 eye{0, 5, 8}, top{0, 2, 0};
+    job.camera.position = eye;
+    job.camera.target = top;
+    const Vec3 view = normalized(top - eye);
+    LightSettings key;
+    key.direction = -1.0 * Vec3{view.x, -view.y, view.z};
+    job.lights = {key};
+    const fs::path one = freshDir("liquid_one"), split = freshDir("liquid_split");
+    for (const fs::path& dir : {one, split}) {
+        for (int f = 1; f <= kFrames; ++f) {
+            const double spread = 2 + 0.05 * f;  // a slab, its top at 2, spreading
+            writeMeshPly(meshPath(dir, f, "ply"),
+                         BoxMesh({-spread, 0, -spread}, {spread, 2, spread}).mesh());
+        }
+    }
+    RecordingReporter reporter("render");
+    render(job, one, 1, kFrames, reporter);
+    render(job, split, 1, 10, reporter);
+    render(job, split, 11, kFrames, reporter);
+    for (int f = 1; f <= kFrames; ++f) {
+        EXPECT_EQ(bytes(framePngPath(one, f)), bytes(framePngPath(split, f))) << "frame " << f;
+    }
 }
 
 TEST(RenderPlan, ARangeMeasuredAloneFramesDifferently) {
