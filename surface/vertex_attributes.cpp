@@ -195,7 +195,9 @@ void carryGlobuleAttributes(TriangleMesh& mesh, const Globules& globules,
                 if (near.empty()) {
                     // None reaches it: the nearest of all the block's candidates stands in.
                     gather(candidates, kernel, p, near, nearest);
-                    if (nearest != std::numeric_limits<uint32_t>::max()) near.push_back({nearest, 1.0f});
+                    if (nearest != std::numeric_limits<uint32_t>::max()) {
+                        near.push_back({nearest, 1.0f});
+                    }
                 }
                 means.set(v, near, perMaterial);
             }

@@ -213,10 +213,11 @@ TEST(SurfaceVelocity, VelGridAndMeshVelocityTravelInTheFiles) {
     for (float y : valuesOf(mesh, "vy")) ASSERT_NEAR(y, 3.0f, 1e-5f);
 }
 
-// Vertices placed by hand, not by the mesher: within one block, some reached by one globule
-// only, some by both, one by neither (but near one). Each gets the kernel-weighted mean of exactly those
-// that reach it (the block's candidates are filtered by the block's box first, which must
-// drop none that reaches a vertex), and the unreached one its nearest globule's velocity.
+// Vertices placed by hand, not by the mesher: within one block, some reached by one
+// globule only, some by both, one by neither (but near one). Each gets the kernel-weighted
+// mean of exactly those that reach it (the block's candidates are filtered by the block's
+// box first, which must drop none that reaches a vertex), and the unreached one its
+// nearest globule's velocity.
 TEST(SurfaceVelocity, HandPlacedVerticesGetTheGlobulesThatReachThem) {
     Globules g;
     g.add({0, 0, 0}, {1, 0, 0}, 1.0f, 1.0f, 0);    // reaches 2 units
