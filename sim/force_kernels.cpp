@@ -309,26 +309,42 @@ void sortingTable(Globules& g, const PairTable& pairs, NeighborWorkspace& w, Acc
                       });
 }
 
-/// The blended force sum for a pair's exponents.
-using SumBlended = void (*)(const ThermalPair&, float, const NeighborBatch&, float&, float&, float&);
+/// One pair's force and heat over a batch (sumBatchAndHeat, thermal_kernel.h).
+using SumBatchAndHeat = float (*)(const PairForce&, const NeighborBatch&, float, float, float&,
+                                  float&, float&);
+
+SumBatchAndHeat heatKernelFor(const PairForce& pair) {
+    return forExponents(pair,
+                        []<int M, int N>() { return SumBatchAndHeat(sumBatchAndHeat<M, N>); });
+}
+
+/// The blended force sum and heat for a pair's exponents.
+using SumBlended = float (*)(const ThermalPair&, float, float, const NeighborBatch&, float&,
+                             float&, float&);
 
 /// What the thermal loop runs for one pair of materials in each phase.
 struct ThermalKernel {
     ThermalPair pair;
     float reach2 = 0;  ///< (the pair's reach in both phases)^2, in units of r_i + r_j
-    SumBatch solid, liquid;
+    SumBatchAndHeat solid, liquid;
     SumBlended blended;
 
+    /// The three kernels share their arithmetic, so that where a pure phase holds the
+    /// blend gives its bits and the phase picked (which follows the group's candidates,
+    /// so a range's cut) changes nothing: with the exponents both phases share, unrolled;
+    /// where the phases' exponents differ, all three with pow() (slower, but the same).
     explicit ThermalKernel(const ThermalPair& p)
         : pair(p),
-          solid(batchKernelFor(p.solid)),
-          liquid(batchKernelFor(p.liquid)),
+          solid(sumBatchAndHeat<0, 0>),
+          liquid(sumBatchAndHeat<0, 0>),
           blended(sumBlendedBatch<0, 0>) {
         const float reach = std::max(p.solid.cutoff(1.0f), p.liquid.cutoff(1.0f));
         reach2 = reach * reach;
         const bool shared = p.solid.integerExponents && p.liquid.integerExponents &&
                             p.solid.mInt == p.liquid.mInt && p.solid.nInt == p.liquid.nInt;
         if (shared) {
+            solid = heatKernelFor(p.solid);
+            liquid = heatKernelFor(p.liquid);
             blended = forExponents(p.solid, []<int M, int N>() { return SumBlended(sumBlendedBatch<M, N>); });
         }
     }
@@ -387,14 +403,17 @@ void sumRangeThermal(const std::vector<ThermalKernel>& kernels, std::size_t kind
                 batch.count = 0;
                 collectNeighbors<true>(from[kind], s.px[k], s.py[k], s.pz[k], s.vx[k], s.vy[k],
                                        s.vz[k], s.radius[k], kernel.reach2, batch);
-                heat += kernel.pair.conductance * batchHeat(batch, t, kernel.reach2);
+                // Each kernel sums the heat in the same lanes (HeatLanes): its bits do not
+                // depend on the phase picked.
+                float in;
                 if (phase == ThermalPhase::Blend) {
-                    kernel.blended(kernel.pair, t, batch, fx, fy, fz);
+                    in = kernel.blended(kernel.pair, t, kernel.reach2, batch, fx, fy, fz);
                 } else if (phase == ThermalPhase::Solid) {
-                    kernel.solid(kernel.pair.solid, batch, fx, fy, fz);
+                    in = kernel.solid(kernel.pair.solid, batch, t, kernel.reach2, fx, fy, fz);
                 } else {
-                    kernel.liquid(kernel.pair.liquid, batch, fx, fy, fz);
+                    in = kernel.liquid(kernel.pair.liquid, batch, t, kernel.reach2, fx, fy, fz);
                 }
+                heat += kernel.pair.conductance * in;
             }
             forces.x[k] = fx;
             forces.y[k] = fy;

@@ -108,7 +108,9 @@ void pairForcesThermalAllPairs(const Globules& g, const PairTable& pairs, Accele
                                                    (g.vy[i] - g.vy[j]) * dy + (g.vz[i] - g.vz[j]) * dz;
                                   batch.radiusSum[0] = sum;
                                   batch.temperature[0] = g.temperature[j];
-                                  sumBlendedBatch<0, 0>(pair, g.temperature[i], batch, fx, fy, fz);
+                                  // (The reference sums the heat itself, below.)
+                                  const float ti = g.temperature[i];
+                                  sumBlendedBatch<0, 0>(pair, ti, reach * reach, batch, fx, fy, fz);
                                   heat += pair.conductance * (1 - d2 / limit) *
                                           (g.temperature[j] - g.temperature[i]);
                               }

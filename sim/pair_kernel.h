@@ -304,9 +304,10 @@ inline void collectGroupCandidatesByMaterial(const GlobuleArrays& s, uint32_t be
 /// Globule i itself (and any globule at exactly its position, whose force is zero) is
 /// left out. @p out has room for them. <Thermal>: also the neighbours' temperatures, for
 /// the heat and the blended force (thermal_kernel.h). The heat is not summed here, over
-/// the candidates' lanes, but over the compacted neighbours (batchHeat): which lane a
-/// candidate takes follows its place in the list, which a range's cut through a cell's
-/// group, or a crowded group's split, changes; the neighbours' order they do not.
+/// the candidates' lanes, but over the compacted neighbours (HeatLanes, in the force's
+/// loop): which lane a candidate takes follows its place in the list, which a range's cut
+/// through a cell's group, or a crowded group's split, changes; the neighbours' order
+/// they do not.
 template <bool Thermal = false>
 inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z, float vx,
                              float vy, float vz, float r, float reach2, NeighborBatch& out) {
@@ -406,17 +407,35 @@ inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z
     out.uniformSum = c.uniformRadius ? r + r : 0.0f;
 }
 
-/// b1/D^M - b2/D^N with integer exponents known at compile time (0 = use pow()).
+/// The constants one pair's plain arithmetic uses (pairScaleOne).
+struct PairTerms {
+    float b1, b2, m, n;
+    float invCr2, invCd2;  ///< 1/C_r^2, 1/C_d^2
+};
+
+/// What eq. (2)-(5) multiply P by for one pair, in plain arithmetic: |P|^2 = @p d2,
+/// r_i + r_j = @p sum. <M, N>: integer exponents known at compile time; <0, 0>: pow().
+/// sumBatch's plain loop and sumBlendedBatch's (thermal_kernel.h) share it, so that where
+/// a pure phase holds the two give the same bits.
 template <int M, int N>
-inline float radialTerm(const PairForce& p, float invD, float distance) {
+inline float pairScaleOne(const PairTerms& c, float d2, float sum, float vDotP) {
+    const float minFraction2 = kMinDistanceFraction * kMinDistanceFraction;
+    const float invSum2 = 1.0f / (sum * sum);
+    const float safeD2 = std::max(d2, minFraction2 * sum * sum);
+    const float distance = std::sqrt(safeD2);
+    const float invD = 1.0f / distance;
+    const float windowR = std::max(0.0f, 1.0f - d2 * invSum2 * c.invCr2);
+    const float windowD = std::max(0.0f, 1.0f - d2 * invSum2 * c.invCd2);
+    float radial;
     if constexpr (M > 0 && N > 0) {
         float powM = 1, powN = 1;
         for (int k = 0; k < M; ++k) powM *= invD;  // unrolled: M is a constant
         for (int k = 0; k < N; ++k) powN *= invD;
-        return p.b1 * powM - p.b2 * powN;
+        radial = c.b1 * powM - c.b2 * powN;
     } else {
-        return p.b1 * std::pow(distance, -p.m) - p.b2 * std::pow(distance, -p.n);
+        radial = c.b1 * std::pow(distance, -c.m) - c.b2 * std::pow(distance, -c.n);
     }
+    return windowR * radial - windowD * vDotP * (invD * invD);
 }
 
 #if defined(__AVX2__)
@@ -541,12 +560,20 @@ private:
 };
 #endif
 
-/// Adds to (fx, fy, fz) the force of eq. (2) from every neighbour in @p batch.
-template <int M, int N>
-inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, float& fy,
-                     float& fz) {
+/// What sumBatchWith does besides the force where the caller wants nothing more.
+struct NoBlockWork {
+    template <typename Mask, typename Lanes>
+    void operator()(uint32_t /*k*/, Mask /*live*/, Lanes /*d2*/) const {}
+};
+
+/// Adds to (fx, fy, fz) the force of eq. (2) from every neighbour in @p batch. On the
+/// vector paths (AVX-512 or AVX2, integer exponents) it also calls @p perBlock(k, live,
+/// d2) for each block of lanes [k, k + width): work that needs |P|^2 rides along instead
+/// of a pass of its own (the heat, thermal_kernel.h). Elsewhere perBlock is not called.
+template <int M, int N, typename PerBlock>
+inline void sumBatchWith(const PairForce& p, const NeighborBatch& batch, float& fx, float& fy,
+                         float& fz, PerBlock&& perBlock) {
     const float invCr2 = 1.0f / (p.cr * p.cr), invCd2 = 1.0f / (p.cd * p.cd);
-    const float minFraction2 = kMinDistanceFraction * kMinDistanceFraction;
     const float *bx = batch.dx.data(), *by = batch.dy.data(), *bz = batch.dz.data();
     const float* bvp = batch.vDotP.data();
     const float* bsum = batch.radiusSum.data();
@@ -559,7 +586,8 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
         const __m512 b1 = _mm512_set1_ps(p.b1), b2 = _mm512_set1_ps(p.b2);
         const float fixedSum2 = batch.uniformSum * batch.uniformSum;
         const __m512 fixedInvSum2 = _mm512_set1_ps(uniform ? 1.0f / fixedSum2 : 0.0f);
-        const __m512 fixedMinD2 = _mm512_set1_ps(minFraction2 * fixedSum2);
+        const __m512 fixedMinD2 =
+            _mm512_set1_ps(kMinDistanceFraction * kMinDistanceFraction * fixedSum2);
         __m512 ax = zero, ay = zero, az = zero;
         // The loop is instantiated twice so that a uniform radius costs no per-pair work.
         const auto sumAll = [&]<bool Uniform>() {
@@ -576,6 +604,7 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
                 const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
                 const __m512 scale = pairScale<M, N>(d2, invSum2, minD2, b1, b2, cr2, cd2,
                                                      _mm512_maskz_loadu_ps(live, bvp + k));
+                perBlock(k, live, d2);
                 ax = _mm512_mask3_fmadd_ps(scale, dx, ax, live);
                 ay = _mm512_mask3_fmadd_ps(scale, dy, ay, live);
                 az = _mm512_mask3_fmadd_ps(scale, dz, az, live);
@@ -602,6 +631,7 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
                 const BatchLanes::Block b = lanes.load(k, Uniform);
                 lanes.add(b, pairScale<M, N>(b.d2, b.invSum2, b.minD2, b1, b2, cr2, cd2,
                                              _mm256_loadu_ps(bvp + k)));
+                perBlock(k, b.live, b.d2);
             }
         };
         if (uniform) {
@@ -613,20 +643,14 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
         return;
     }
 #endif
+    static_cast<void>(perBlock);  // (the plain loop has no blocks)
+    const PairTerms terms{p.b1, p.b2, p.m, p.n, invCr2, invCd2};
     float ax = 0, ay = 0, az = 0;
     for (uint32_t k = 0; k < count; ++k) {
         const float dx = bx[k], dy = by[k], dz = bz[k];
         const float sum = uniform ? batch.uniformSum : bsum[k];
-        const float invSum2 = 1.0f / (sum * sum);
         const float d2 = dx * dx + dy * dy + dz * dz;
-        const float safeD2 = std::max(d2, minFraction2 * sum * sum);
-        const float distance = std::sqrt(safeD2);
-        const float invD = 1.0f / distance;
-        const float windowR = std::max(0.0f, 1.0f - d2 * invSum2 * invCr2);
-        const float windowD = std::max(0.0f, 1.0f - d2 * invSum2 * invCd2);
-        const float vDotP = bvp[k];
-        const float scale =
-            windowR * radialTerm<M, N>(p, invD, distance) - windowD * vDotP * (invD * invD);
+        const float scale = pairScaleOne<M, N>(terms, d2, sum, bvp[k]);
         ax += scale * dx;
         ay += scale * dy;
         az += scale * dz;
@@ -634,6 +658,13 @@ inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, 
     fx += ax;
     fy += ay;
     fz += az;
+}
+
+/// sumBatchWith with nothing besides the force.
+template <int M, int N>
+inline void sumBatch(const PairForce& p, const NeighborBatch& batch, float& fx, float& fy,
+                     float& fz) {
+    sumBatchWith<M, N>(p, batch, fx, fy, fz, NoBlockWork{});
 }
 
 }  // namespace globular

@@ -4,9 +4,10 @@
 // material the pair (ThermalPair) decides:
 //   - phaseOf: whether every pair the globule forms with that material is solid, every
 //     one liquid, or whether their constants blend by each pair's mean temperature;
-//   - the heat flowing in is summed over the neighbours once collected (batchHeat);
-//   - the force is pair_kernel.h's sumBatch with the phase's constants, or, where pairs
-//     melt, sumBlendedBatch below.
+//   - the force is pair_kernel.h's sumBatch with the phase's constants (sumBatchAndHeat),
+//     or, where pairs melt, sumBlendedBatch below;
+//   - the heat flowing in is summed over the neighbours once collected (HeatLanes), in
+//     the force's loop.
 // The blend is of what the kernel uses, b1, b2, 1/C_r^2 and 1/C_d^2 (and m, n on the
 // generic path), as (1 - s) solid + s liquid: exactly the solid's at s = 0 and exactly
 // the liquid's at s = 1, so the three ways agree bit for bit where they overlap, and
@@ -74,60 +75,143 @@ inline std::pair<float, float> temperatureRange(const float* t, uint32_t count) 
 #endif
 }
 
-/// The heat flowing into a globule at temperature @p ti from the neighbours in @p batch
-/// (their temperatures kept by collectNeighbors<true>), per unit conductance: the sum of
-/// w (T_j - T_i) with w = 1 - d^2 / (reach^2 (r_i + r_j)^2), reach^2 = @p reach2. The
-/// weight comes from a division, not an estimate, so w_ij equals w_ji bit for bit and
-/// conduction conserves heat to the sum's rounding. The sum runs over the batch in its
-/// order (in 8 lanes with AVX2, and in the AVX-512 build, which has AVX2 too): a globule
-/// meets its neighbours in the same order however a task's range cuts its cell's group
-/// or a crowded group is split (force_kernels.cpp), so its heat has the same bits on any
-/// thread count.
+/// The heat flowing into a globule at temperature @p ti from the neighbours in a batch
+/// (their temperatures kept by collectNeighbors<true>), per unit conductance, summed a
+/// block of lanes at a time: w (T_j - T_i) with w = 1 - d^2 / (reach^2 (r_i + r_j)^2),
+/// reach^2 = @p reach2. The weight comes from a division, not an estimate, so w_ij equals
+/// w_ji bit for bit and conduction conserves heat to the sum's rounding. The sum runs over
+/// the batch in its order, in the build's widest lanes (16 with AVX-512, 8 with AVX2):
+/// a globule meets its neighbours in the same order however a task's range cuts its
+/// cell's group or a crowded group is split (force_kernels.cpp), so its heat has the same
+/// bits on any thread count. Every kernel below sums it with this one class, in the
+/// force's own loop or in a pass of its own (batchHeat), so its bits do not depend on
+/// which kernel the pair's phase picks either.
+class HeatLanes {
+public:
+    HeatLanes(const NeighborBatch& batch, float ti, float reach2)
+        : mSums(batch.radiusSum.data()),
+          mTemperatures(batch.temperature.data()),
+          mUniform(batch.uniformSum > 0) {
+        const float uniformInvLimit =
+            mUniform ? 1.0f / (batch.uniformSum * batch.uniformSum * reach2) : 0;
+#if defined(__AVX512F__)
+        mTi = _mm512_set1_ps(ti);
+        mReach2 = _mm512_set1_ps(reach2);
+        mUniformInvLimit = _mm512_set1_ps(uniformInvLimit);
+#elif defined(__AVX2__)
+        mTi = _mm256_set1_ps(ti);
+        mReach2 = _mm256_set1_ps(reach2);
+        mUniformInvLimit = _mm256_set1_ps(uniformInvLimit);
+#else
+        mTi = ti;
+        mReach2 = reach2;
+        mUniformInvLimit = uniformInvLimit;
+#endif
+    }
+
+#if defined(__AVX512F__)
+    /// Adds the terms of the live lanes of [k, k + 16), whose |P|^2 is @p d2.
+    void add(uint32_t k, __mmask16 live, __m512 d2) {
+        const __m512 one = _mm512_set1_ps(1);
+        __m512 invLimit = mUniformInvLimit;
+        if (!mUniform) {
+            const __m512 sum = _mm512_mask_loadu_ps(one, live, mSums + k);
+            invLimit = _mm512_div_ps(one, _mm512_mul_ps(_mm512_mul_ps(sum, sum), mReach2));
+        }
+        const __m512 w = _mm512_fnmadd_ps(d2, invLimit, one);
+        const __m512 tj = _mm512_maskz_loadu_ps(live, mTemperatures + k);
+        const __m512 difference = _mm512_sub_ps(tj, mTi);
+        mHeat = _mm512_mask3_fmadd_ps(w, difference, mHeat, live);
+    }
+    float total() const { return _mm512_reduce_add_ps(mHeat); }
+#elif defined(__AVX2__)
+    /// Adds the terms of the live lanes of [k, k + 8), whose |P|^2 is @p d2. Past count
+    /// the batch holds stale but readable entries.
+    void add(uint32_t k, __m256 live, __m256 d2) {
+        const __m256 one = _mm256_set1_ps(1);
+        __m256 invLimit = mUniformInvLimit;
+        if (!mUniform) {
+            const __m256 sum = _mm256_loadu_ps(mSums + k);
+            invLimit = _mm256_div_ps(one, _mm256_mul_ps(_mm256_mul_ps(sum, sum), mReach2));
+        }
+        const __m256 w = _mm256_fnmadd_ps(d2, invLimit, one);
+        const __m256 difference = _mm256_sub_ps(_mm256_loadu_ps(mTemperatures + k), mTi);
+        mHeat = _mm256_blendv_ps(mHeat, _mm256_fmadd_ps(w, difference, mHeat), live);
+    }
+    float total() const { return sumLanes(mHeat); }
+#else
+    /// Adds neighbour k's term; its |P|^2 is @p d2.
+    void add(uint32_t k, float d2) {
+        const float invLimit = mUniform ? mUniformInvLimit : 1.0f / (mSums[k] * mSums[k] * mReach2);
+        mHeat += (1.0f - d2 * invLimit) * (mTemperatures[k] - mTi);
+    }
+    float total() const { return mHeat; }
+#endif
+
+private:
+    const float *mSums, *mTemperatures;
+    bool mUniform;
+#if defined(__AVX512F__)
+    __m512 mTi, mReach2, mUniformInvLimit, mHeat = _mm512_setzero_ps();
+#elif defined(__AVX2__)
+    __m256 mTi, mReach2, mUniformInvLimit, mHeat = _mm256_setzero_ps();
+#else
+    float mTi, mReach2, mUniformInvLimit, mHeat = 0;
+#endif
+};
+
+/// HeatLanes' sum over @p batch in a pass of its own, for the kernels whose force loop
+/// has no blocks (pow() exponents, the plain build).
 inline float batchHeat(const NeighborBatch& batch, float ti, float reach2) {
     const float *bx = batch.dx.data(), *by = batch.dy.data(), *bz = batch.dz.data();
-    const float *bt = batch.temperature.data(), *bsum = batch.radiusSum.data();
-    const bool uniform = batch.uniformSum > 0;
-    const float uniformInvLimit = uniform ? 1.0f / (batch.uniformSum * batch.uniformSum * reach2) : 0;
     const uint32_t count = batch.count;
-#if defined(__AVX2__)
-    const __m256 one = _mm256_set1_ps(1), tI = _mm256_set1_ps(ti), reach2v = _mm256_set1_ps(reach2);
-    __m256 heat = _mm256_setzero_ps();
+    HeatLanes heat(batch, ti, reach2);
+#if defined(__AVX512F__)
+    for (uint32_t k = 0; k < count; k += 16) {
+        const __mmask16 live = firstLanes(count - k);
+        const __m512 dx = _mm512_maskz_loadu_ps(live, bx + k);
+        const __m512 dy = _mm512_maskz_loadu_ps(live, by + k);
+        const __m512 dz = _mm512_maskz_loadu_ps(live, bz + k);
+        heat.add(k, live, _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx))));
+    }
+#elif defined(__AVX2__)
     for (uint32_t k = 0; k < count; k += 8) {
-        // The padding past count is readable; its lanes are left out of the sum.
         const __m256 live = _mm256_castsi256_ps(firstLanes8(count - k));
         const __m256 dx = _mm256_loadu_ps(bx + k), dy = _mm256_loadu_ps(by + k);
         const __m256 dz = _mm256_loadu_ps(bz + k);
-        const __m256 d2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
-        __m256 invLimit = _mm256_set1_ps(uniformInvLimit);
-        if (!uniform) {
-            const __m256 sum = _mm256_loadu_ps(bsum + k);
-            invLimit = _mm256_div_ps(one, _mm256_mul_ps(_mm256_mul_ps(sum, sum), reach2v));
-        }
-        const __m256 w = _mm256_fnmadd_ps(d2, invLimit, one);
-        const __m256 added = _mm256_fmadd_ps(w, _mm256_sub_ps(_mm256_loadu_ps(bt + k), tI), heat);
-        heat = _mm256_blendv_ps(heat, added, live);
+        heat.add(k, live, _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx))));
     }
-    return sumLanes(heat);
 #else
-    float heat = 0;
-    for (uint32_t k = 0; k < count; ++k) {
-        const float invLimit = uniform ? uniformInvLimit : 1.0f / (bsum[k] * bsum[k] * reach2);
-        const float d2 = bx[k] * bx[k] + by[k] * by[k] + bz[k] * bz[k];
-        heat += (1.0f - d2 * invLimit) * (bt[k] - ti);
-    }
-    return heat;
+    for (uint32_t k = 0; k < count; ++k) heat.add(k, bx[k] * bx[k] + by[k] * by[k] + bz[k] * bz[k]);
 #endif
+    return heat.total();
+}
+
+/// sumBatch<M, N> that also returns the heat flowing in (HeatLanes): summed in the force's
+/// loop where that loop has blocks, which spares the heat's own pass over the batch.
+template <int M, int N>
+inline float sumBatchAndHeat(const PairForce& p, const NeighborBatch& batch, float ti,
+                             float reach2, float& fx, float& fy, float& fz) {
+#if defined(__AVX2__)
+    if constexpr (M > 0 && N > 0) {
+        HeatLanes heat(batch, ti, reach2);
+        sumBatchWith<M, N>(p, batch, fx, fy, fz,
+                           [&](uint32_t k, auto live, auto d2) { heat.add(k, live, d2); });
+        return heat.total();
+    }
+#endif
+    sumBatch<M, N>(p, batch, fx, fy, fz);
+    return batchHeat(batch, ti, reach2);
 }
 
 /// Adds to (fx, fy, fz) the force of every neighbour in @p batch (which holds their
 /// temperatures) on a globule at temperature @p ti, each pair's constants blended by its
-/// mean temperature. <M, N>: the exponents both phases share, unrolled; <0, 0>: pow()
-/// with blended exponents.
+/// mean temperature, and returns the heat flowing in (HeatLanes, @p reach2). <M, N>: the
+/// exponents both phases share, unrolled; <0, 0>: pow() with blended exponents.
 template <int M, int N>
-inline void sumBlendedBatch(const ThermalPair& pair, float ti, const NeighborBatch& batch,
-                            float& fx, float& fy, float& fz) {
+inline float sumBlendedBatch(const ThermalPair& pair, float ti, float reach2,
+                             const NeighborBatch& batch, float& fx, float& fy, float& fz) {
     const PairForce &solid = pair.solid, &liquid = pair.liquid;
-    const float minFraction2 = kMinDistanceFraction * kMinDistanceFraction;
     const float *bx = batch.dx.data(), *by = batch.dy.data(), *bz = batch.dz.data();
     const float* bvp = batch.vDotP.data();
     const float* bsum = batch.radiusSum.data();
@@ -149,8 +233,10 @@ inline void sumBlendedBatch(const ThermalPair& pair, float ti, const NeighborBat
                      cd2L = _mm512_set1_ps(1.0f / (liquid.cd * liquid.cd));
         const float fixedSum2 = batch.uniformSum * batch.uniformSum;
         const __m512 fixedInvSum2 = _mm512_set1_ps(uniform ? 1.0f / fixedSum2 : 0.0f);
-        const __m512 fixedMinD2 = _mm512_set1_ps(minFraction2 * fixedSum2);
+        const __m512 fixedMinD2 =
+            _mm512_set1_ps(kMinDistanceFraction * kMinDistanceFraction * fixedSum2);
         __m512 ax = zero, ay = zero, az = zero;
+        HeatLanes heat(batch, ti, reach2);
         for (uint32_t k = 0; k < count; k += 16) {
             const uint32_t left = count - k;
             const __mmask16 live = firstLanes(left);
@@ -172,6 +258,7 @@ inline void sumBlendedBatch(const ThermalPair& pair, float ti, const NeighborBat
             const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
             const __m512 scale = pairScale<M, N>(d2, invSum2, minD2, b1, b2, cr2, cd2,
                                                  _mm512_maskz_loadu_ps(live, bvp + k));
+            heat.add(k, live, d2);
             ax = _mm512_mask3_fmadd_ps(scale, dx, ax, live);
             ay = _mm512_mask3_fmadd_ps(scale, dy, ay, live);
             az = _mm512_mask3_fmadd_ps(scale, dz, az, live);
@@ -179,7 +266,7 @@ inline void sumBlendedBatch(const ThermalPair& pair, float ti, const NeighborBat
         fx += _mm512_reduce_add_ps(ax);
         fy += _mm512_reduce_add_ps(ay);
         fz += _mm512_reduce_add_ps(az);
-        return;
+        return heat.total();
     }
 #elif defined(__AVX2__)
     if constexpr (M > 0 && N > 0) {
@@ -195,8 +282,10 @@ inline void sumBlendedBatch(const ThermalPair& pair, float ti, const NeighborBat
         const __m256 cr2L = _mm256_set1_ps(1.0f / (liquid.cr * liquid.cr));
         const __m256 cd2L = _mm256_set1_ps(1.0f / (liquid.cd * liquid.cd));
         BatchLanes lanes(batch);
+        HeatLanes heat(batch, ti, reach2);
         for (uint32_t k = 0; k < count; k += 8) {
             const BatchLanes::Block b = lanes.load(k, uniform);
+            heat.add(k, b.live, b.d2);
             // s: smoothstep of the pair's mean temperature; exactly 1 from T_liquid up.
             const __m256 t = _mm256_mul_ps(half, _mm256_add_ps(tI, _mm256_loadu_ps(bt + k)));
             __m256 x = _mm256_mul_ps(_mm256_sub_ps(t, tS), invRange);
@@ -212,7 +301,7 @@ inline void sumBlendedBatch(const ThermalPair& pair, float ti, const NeighborBat
                                          _mm256_loadu_ps(bvp + k)));
         }
         lanes.addTo(fx, fy, fz);
-        return;
+        return heat.total();
     }
 #endif
     const float cr2S = 1.0f / (solid.cr * solid.cr), cd2S = 1.0f / (solid.cd * solid.cd);
@@ -221,25 +310,13 @@ inline void sumBlendedBatch(const ThermalPair& pair, float ti, const NeighborBat
     for (uint32_t k = 0; k < count; ++k) {
         const float s = meltFraction(0.5f * (ti + bt[k]), pair), r = 1.0f - s;
         const auto blend = [&](float a, float b) { return s * b + r * a; };
-        const float b1 = blend(solid.b1, liquid.b1), b2 = blend(solid.b2, liquid.b2);
-        const float cr2 = blend(cr2S, cr2L), cd2 = blend(cd2S, cd2L);
+        const PairTerms terms{blend(solid.b1, liquid.b1), blend(solid.b2, liquid.b2),
+                              blend(solid.m, liquid.m),   blend(solid.n, liquid.n),
+                              blend(cr2S, cr2L),          blend(cd2S, cd2L)};
         const float dx = bx[k], dy = by[k], dz = bz[k];
         const float sum = uniform ? batch.uniformSum : bsum[k];
         const float d2 = dx * dx + dy * dy + dz * dz;
-        const float safeD2 = std::max(d2, minFraction2 * sum * sum);
-        const float distance = std::sqrt(safeD2);
-        const float invD = 1.0f / distance;
-        const float relative = d2 / (sum * sum);
-        const float windowR = std::max(0.0f, 1.0f - relative * cr2);
-        const float windowD = std::max(0.0f, 1.0f - relative * cd2);
-        float radial;
-        if constexpr (M > 0 && N > 0) {
-            radial = b1 * PairForce::intPow(invD, M) - b2 * PairForce::intPow(invD, N);
-        } else {
-            radial = b1 * std::pow(distance, -blend(solid.m, liquid.m)) -
-                     b2 * std::pow(distance, -blend(solid.n, liquid.n));
-        }
-        const float scale = windowR * radial - windowD * bvp[k] * (invD * invD);
+        const float scale = pairScaleOne<M, N>(terms, d2, sum, bvp[k]);
         ax += scale * dx;
         ay += scale * dy;
         az += scale * dz;
@@ -247,6 +324,7 @@ inline void sumBlendedBatch(const ThermalPair& pair, float ti, const NeighborBat
     fx += ax;
     fy += ay;
     fz += az;
+    return batchHeat(batch, ti, reach2);
 }
 
 }  // namespace globular

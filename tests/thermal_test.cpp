@@ -193,6 +193,76 @@ TEST(Thermal, BlendIsExactlyTheSolidAtTSolidAndTheLiquidAtTLiquid) {
     EXPECT_FLOAT_EQ(meltFraction(45, pair), 0.15625f);  // x = 1/4: 3/16 - 2/64
 }
 
+/// HeatAndForceDoNotDependOnTheKernelThePhasePicks for @p material.
+void expectSameResultsWhicheverKernel(const MaterialSettings& material) {
+    const PairTable table({material}, {});
+    const ThermalPair& pair = table.thermal(0, 0);
+    const float reach = std::max(pair.solid.cutoff(1.0f), pair.liquid.cutoff(1.0f));
+    std::mt19937 random(21);
+    std::uniform_real_distribution<float> at(-9, 9), speed(-0.5, 0.5), warm(60, 100);
+    Globules liquid;
+    for (int i = 0; i < 2500; ++i) {
+        const float radius = i % 3 == 0 ? 0.7f : 1.0f;
+        liquid.add({at(random), at(random), at(random)},
+                   {speed(random), speed(random), speed(random)}, radius, 1.0f, i);
+        liquid.temperature.push_back(warm(random));  // every pair's mean is above T_liquid
+    }
+    Globules chilled = liquid;
+    const std::vector<Vec3> cold = {{-4, 1, 2}, {5, -3, -1}};
+    for (std::size_t c = 0; c < cold.size(); ++c) {
+        chilled.add(cold[c], {0, 0, 0}, 1.0f, 1.0f, int32_t(10000 + c));
+        chilled.temperature.push_back(0);
+    }
+    // The globules beyond reach of every cold one, and how many of them are within two
+    // reaches of one (where groups take the cold ones as candidates).
+    std::vector<bool> untouched(liquid.size(), true);
+    std::size_t nearby = 0;
+    for (std::size_t i = 0; i < liquid.size(); ++i) {
+        double closest = 1e30;
+        for (const Vec3& c : cold) closest = std::min(closest, length(liquid.position(i) - c));
+        const double limit = reach * (liquid.radius[i] + 1.0f) * 1.01;
+        untouched[i] = closest > limit;
+        nearby += untouched[i] && closest < 2 * limit;
+    }
+    ASSERT_GT(nearby, 50u);
+    Accelerations alone, withCold;
+    NeighborWorkspace w1, w2;
+    pairForcesThermal(liquid, table, w1, alone);
+    pairForcesThermal(chilled, table, w2, withCold);
+    std::vector<std::size_t> byId(chilled.size() + 10000);
+    for (std::size_t k = 0; k < chilled.size(); ++k) byId[std::size_t(chilled.id[k])] = k;
+    std::size_t compared = 0, heated = 0;
+    for (std::size_t k = 0; k < liquid.size(); ++k) {
+        const std::size_t original = std::size_t(liquid.id[k]);
+        if (!untouched[original]) continue;
+        const std::size_t other = byId[original];
+        SCOPED_TRACE("globule " + std::to_string(original));
+        ASSERT_EQ(alone.heat[k], withCold.heat[other]);
+        ASSERT_EQ(alone.x[k], withCold.x[other]);
+        ASSERT_EQ(alone.y[k], withCold.y[other]);
+        ASSERT_EQ(alone.z[k], withCold.z[other]);
+        ++compared;
+        heated += alone.heat[k] != 0;
+    }
+    EXPECT_GT(heated, compared / 2);  // the heat is a real sum, not zero
+}
+
+/// A globule's heat and force have the same bits whichever kernel the loop picks for its
+/// pairs' phase (force_kernels.cpp): the pure phase's, or the blend's, which the loop takes
+/// when any of the group's candidates is outside the pure range, neighbour or not. A
+/// liquid cloud is summed alone and then with a few cold globules among it: every globule
+/// that has no cold one within reach forms the same liquid pairs in the same order either
+/// way, though near the cold ones it is summed by the blended kernel, so its results must
+/// not change by a bit.
+TEST(Thermal, HeatAndForceDoNotDependOnTheKernelThePhasePicks) {
+    MaterialSettings unshared = evenWax();  // the phases' exponents differ: pow() kernels
+    unshared.liquid.n = 4;
+    for (const MaterialSettings& material : {evenWax(), unshared}) {
+        SCOPED_TRACE(material.liquid.n == 4 ? "exponents differ" : "exponents shared");
+        expectSameResultsWhicheverKernel(material);
+    }
+}
+
 TEST(Thermal, PairPhasesAreSymmetric) {
     MaterialSettings other = wax("b");
     other.tSolid = 10;
