@@ -189,7 +189,7 @@ inline float batchHeat(const NeighborBatch& batch, float ti, float reach2) {
 
 /// sumBatch<M, N> that also returns the heat flowing in (HeatLanes). With AVX-512 it is
 /// summed in the force's loop, which spares the heat's own pass over the batch: the
-/// temperature block's step 1.04-1.08x faster, the dense pile's 1.09-1.12x. With AVX2 it
+/// temperature block's step 1.08x faster, the dense pile's 1.10x (medians). With AVX2 it
 /// keeps its own pass (batchHeat, the same lanes and bits): in the force's loop, with 16
 /// vector registers, the dense pile stepped 1.1x slower.
 template <int M, int N>
