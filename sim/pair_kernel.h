@@ -304,10 +304,9 @@ inline void collectGroupCandidatesByMaterial(const GlobuleArrays& s, uint32_t be
 /// Globule i itself (and any globule at exactly its position, whose force is zero) is
 /// left out. @p out has room for them. <Thermal>: also the neighbours' temperatures, for
 /// the heat and the blended force (thermal_kernel.h). The heat is not summed here, over
-/// the candidates' lanes, but over the compacted neighbours (HeatLanes, in the force's
-/// loop): which lane a candidate takes follows its place in the list, which a range's cut
-/// through a cell's group, or a crowded group's split, changes; the neighbours' order
-/// they do not.
+/// the candidates' lanes, but over the compacted neighbours (HeatLanes): which lane a
+/// candidate takes follows its place in the list, which a range's cut through a cell's
+/// group, or a crowded group's split, changes; the neighbours' order they do not.
 template <bool Thermal = false>
 inline void collectNeighbors(const GroupCandidates& c, float x, float y, float z, float vx,
                              float vy, float vz, float r, float reach2, NeighborBatch& out) {
@@ -567,9 +566,9 @@ struct NoBlockWork {
 };
 
 /// Adds to (fx, fy, fz) the force of eq. (2) from every neighbour in @p batch. On the
-/// vector paths (AVX-512 or AVX2, integer exponents) it also calls @p perBlock(k, live,
-/// d2) for each block of lanes [k, k + width): work that needs |P|^2 rides along instead
-/// of a pass of its own (the heat, thermal_kernel.h). Elsewhere perBlock is not called.
+/// AVX-512 path (integer exponents) it also calls @p perBlock(k, live, d2) for each block
+/// of lanes [k, k + 16): work that needs |P|^2 rides along instead of a pass of its own
+/// (the heat, thermal_kernel.h). Elsewhere perBlock is not called.
 template <int M, int N, typename PerBlock>
 inline void sumBatchWith(const PairForce& p, const NeighborBatch& batch, float& fx, float& fy,
                          float& fz, PerBlock&& perBlock) {
@@ -631,7 +630,6 @@ inline void sumBatchWith(const PairForce& p, const NeighborBatch& batch, float& 
                 const BatchLanes::Block b = lanes.load(k, Uniform);
                 lanes.add(b, pairScale<M, N>(b.d2, b.invSum2, b.minD2, b1, b2, cr2, cd2,
                                              _mm256_loadu_ps(bvp + k)));
-                perBlock(k, b.live, b.d2);
             }
         };
         if (uniform) {
@@ -643,7 +641,7 @@ inline void sumBatchWith(const PairForce& p, const NeighborBatch& batch, float& 
         return;
     }
 #endif
-    static_cast<void>(perBlock);  // (the plain loop has no blocks)
+    static_cast<void>(perBlock);  // (this loop has no blocks)
     const PairTerms terms{p.b1, p.b2, p.m, p.n, invCr2, invCd2};
     float ax = 0, ay = 0, az = 0;
     for (uint32_t k = 0; k < count; ++k) {
