@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "force_kernels.h"
@@ -32,6 +34,13 @@ struct CellGroup {
     std::size_t total = 0;     ///< globules in those runs
     std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> runs;
 };
+
+#if defined(__AVX512F__)
+/// Globule @p k of @p s as a member whose force is summed (CandidateLanes).
+Member memberAt(const Globules& s, std::size_t k) {
+    return {s.px[k], s.py[k], s.pz[k], s.vx[k], s.vy[k], s.vz[k], s.radius[k]};
+}
+#endif
 
 /// Grows the box [@p lo, @p hi] to hold globule @p k of @p s.
 void growBox(const Globules& s, std::size_t k, float lo[3], float hi[3]) {
@@ -144,11 +153,31 @@ void forEachMember(const Globules& s, std::size_t first, const CellGroup& group,
     }
 }
 
-/// Sums forces on the globules [begin, end) of @p s, which are in grid order. Globules
-/// that share a cell are consecutive: they are handled as a group with shared candidates,
-/// crowded groups in parts (GroupParts). A part's candidates keep the group's order, and
-/// every filter is conservative (the pair test decides), so each globule's neighbours,
-/// and its sum, are the same whichever way its group is split.
+/// The range of whole grid cells that a task's range [@p begin, @p end) of @p s (in grid
+/// order) stands for: each bound moved on to the first globule of a cell. Every cell then
+/// falls to the one task whose range holds its first globule, whatever the partitioner
+/// cut, so a cell's group and its candidate lists, and with them CandidateLanes' lanes, are
+/// the same on any thread count.
+std::pair<std::size_t, std::size_t> wholeCells(const NeighborGrid& grid, const Globules& s,
+                                               std::size_t begin, std::size_t end) {
+    const std::size_t n = s.size();
+    const auto startsCell = [&](std::size_t k) {
+        return k == 0 || k >= n ||
+               grid.cellOf(s.px[k], s.py[k], s.pz[k]) !=
+                   grid.cellOf(s.px[k - 1], s.py[k - 1], s.pz[k - 1]);
+    };
+    while (!startsCell(begin)) ++begin;
+    while (!startsCell(end)) ++end;
+    return {begin, std::max(begin, end)};
+}
+
+/// Sums forces on the globules [begin, end) of @p s, which are in grid order; the range
+/// is of whole cells (wholeCells). Globules that share a cell are consecutive: they are
+/// handled as a group with shared candidates, crowded groups in parts (GroupParts). A
+/// part's candidates keep the group's order, and every filter is conservative (the pair
+/// test decides), so each globule's neighbours are the same whichever way its group is
+/// split. With AVX-512 and a uniform radius the force is summed straight over the
+/// candidates (CandidateLanes); elsewhere over the neighbours once compacted.
 template <int M, int N>
 void sumRange(const PairForce& pair, const NeighborGrid& grid, const Globules& s,
               bool uniformRadius, std::size_t begin, std::size_t end, Accelerations& forces) {
@@ -176,10 +205,22 @@ void sumRange(const PairForce& pair, const NeighborGrid& grid, const Globules& s
         batch.reserve(all.count);
         forEachMember(s, first, group, groupReach, candidates, parts,
                       [&](const std::vector<GroupCandidates>& from, std::size_t k) {
+                          float fx = 0, fy = 0, fz = 0;
+#if defined(__AVX512F__)
+                          if constexpr (M > 0 && N > 0) {
+                              if (uniformRadius) {
+                                  const CandidateLanes lanes(from[0], memberAt(s, k), reach2);
+                                  sumCandidates<M, N>(pair, lanes, fx, fy, fz);
+                                  forces.x[k] = fx;
+                                  forces.y[k] = fy;
+                                  forces.z[k] = fz;
+                                  return;
+                              }
+                          }
+#endif
                           batch.count = 0;
                           collectNeighbors(from[0], s.px[k], s.py[k], s.pz[k], s.vx[k], s.vy[k],
                                            s.vz[k], s.radius[k], reach2, batch);
-                          float fx = 0, fy = 0, fz = 0;
                           sumBatch<M, N>(pair, batch, fx, fy, fz);
                           forces.x[k] = fx;
                           forces.y[k] = fy;
@@ -228,21 +269,44 @@ void sortingOne(Globules& g, const PairForce& pair, NeighborWorkspace& w, Accele
     const bool uniformRadius = smallest == largest;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, w.grain),
                       [&](const tbb::blocked_range<std::size_t>& r) {
-                          sum(pair, w.grid, g, uniformRadius, r.begin(), r.end(), forces);
+                          const auto [begin, end] = wholeCells(w.grid, g, r.begin(), r.end());
+                          sum(pair, w.grid, g, uniformRadius, begin, end, forces);
                       });
 }
 
 /// One pair's sum over a batch: sumBatch for the pair's exponents.
 using SumBatch = void (*)(const PairForce&, const NeighborBatch&, float&, float&, float&);
+#if defined(__AVX512F__)
+/// The same straight over a member's candidates (CandidateLanes).
+using SumCandidates = void (*)(const PairForce&, const CandidateLanes&, float&, float&, float&);
+#endif
 
-SumBatch batchKernelFor(const PairForce& pair) {
-    return forExponents(pair, []<int M, int N>() { return SumBatch(sumBatch<M, N>); });
-}
+/// One pair's kernels for sumRangeMixed: over the compacted neighbours and, with AVX-512
+/// and integer exponents, straight over the candidates (for a uniform radius).
+struct MixedKernel {
+    SumBatch batch;
+#if defined(__AVX512F__)
+    SumCandidates direct = nullptr;
+#endif
+
+    explicit MixedKernel(const PairForce& pair)
+        : batch(forExponents(pair, []<int M, int N>() { return SumBatch(sumBatch<M, N>); })) {
+#if defined(__AVX512F__)
+        direct = forExponents(pair, []<int M, int N>() {
+            if constexpr (M > 0 && N > 0) {
+                return SumCandidates(sumCandidates<M, N>);
+            } else {
+                return SumCandidates(nullptr);
+            }
+        });
+#endif
+    }
+};
 
 /// sumRange for several materials: a cell's candidates gathered once per material, and
 /// each member summed over each material's with that pair's constants and kernel, in
-/// material order (the same order on any thread count).
-void sumRangeMixed(const PairTable& pairs, const std::vector<SumBatch>& kernels,
+/// material order (the same order on any thread count); the range is of whole cells.
+void sumRangeMixed(const PairTable& pairs, const std::vector<MixedKernel>& kernels,
                    const NeighborGrid& grid, const Globules& s, bool uniformRadius,
                    std::size_t begin, std::size_t end, Accelerations& forces) {
     const GlobuleArrays arrays{s.px.data(), s.py.data(), s.pz.data(),    s.vx.data(),
@@ -273,11 +337,19 @@ void sumRangeMixed(const PairTable& pairs, const std::vector<SumBatch>& kernels,
             for (std::size_t kind = 0; kind < kinds; ++kind) {
                 if (from[kind].count == 0) continue;
                 const PairForce& pair = pairs(mine, kind);
+                const MixedKernel& kernel = kernels[mine * kinds + kind];
                 const float reach = pair.cutoff(1.0f);
+#if defined(__AVX512F__)
+                if (uniformRadius && kernel.direct) {
+                    kernel.direct(pair, CandidateLanes(from[kind], memberAt(s, k), reach * reach),
+                                  fx, fy, fz);
+                    continue;
+                }
+#endif
                 batch.count = 0;
                 collectNeighbors(from[kind], s.px[k], s.py[k], s.pz[k], s.vx[k], s.vy[k],
                                  s.vz[k], s.radius[k], reach * reach, batch);
-                kernels[mine * kinds + kind](pair, batch, fx, fy, fz);
+                kernel.batch(pair, batch, fx, fy, fz);
             }
             forces.x[k] = fx;
             forces.y[k] = fy;
@@ -297,15 +369,16 @@ void sortingTable(Globules& g, const PairTable& pairs, NeighborWorkspace& w, Acc
     w.largestRadius = largest;
     w.grid.build(g.px.data(), g.py.data(), g.pz.data(), n, pairs.cutoff(2.0f * largest));
     g.permute(w.grid.sortedOrder(), forces.x);
-    std::vector<SumBatch> kernels;
+    std::vector<MixedKernel> kernels;
     for (std::size_t a = 0; a < pairs.materials(); ++a) {
-        for (std::size_t b = 0; b < pairs.materials(); ++b) kernels.push_back(batchKernelFor(pairs(a, b)));
+        for (std::size_t b = 0; b < pairs.materials(); ++b) kernels.emplace_back(pairs(a, b));
     }
     const bool uniformRadius = smallest == largest;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, w.grain),
                       [&](const tbb::blocked_range<std::size_t>& r) {
-                          sumRangeMixed(pairs, kernels, w.grid, g, uniformRadius, r.begin(),
-                                        r.end(), forces);
+                          const auto [begin, end] = wholeCells(w.grid, g, r.begin(), r.end());
+                          sumRangeMixed(pairs, kernels, w.grid, g, uniformRadius, begin, end,
+                                        forces);
                       });
 }
 
@@ -322,12 +395,29 @@ SumBatchAndHeat heatKernelFor(const PairForce& pair) {
 using SumBlended = float (*)(const ThermalPair&, float, float, const NeighborBatch&, float&,
                              float&, float&);
 
+#if defined(__AVX512F__)
+/// The same straight over a member's candidates (CandidateLanes).
+using SumCandidatesAndHeat = float (*)(const PairForce&, const CandidateLanes&,
+                                       const GroupCandidates&, float, float, float&, float&,
+                                       float&);
+using SumBlendedCandidates = float (*)(const ThermalPair&, const CandidateLanes&,
+                                       const GroupCandidates&, float, float, float&, float&,
+                                       float&);
+#endif
+
 /// What the thermal loop runs for one pair of materials in each phase.
 struct ThermalKernel {
     ThermalPair pair;
     float reach2 = 0;  ///< (the pair's reach in both phases)^2, in units of r_i + r_j
     SumBatchAndHeat solid, liquid;
     SumBlended blended;
+#if defined(__AVX512F__)
+    /// With shared integer exponents, for a uniform radius: a pure phase's kernel (with
+    /// that phase's constants) and the blend straight over the candidates, in the same
+    /// lanes; null otherwise.
+    SumCandidatesAndHeat pureDirect = nullptr;
+    SumBlendedCandidates blendedDirect = nullptr;
+#endif
 
     /// The three kernels share their arithmetic, so that where a pure phase holds the
     /// blend gives its bits and the phase picked (which follows the group's candidates,
@@ -346,14 +436,26 @@ struct ThermalKernel {
             solid = heatKernelFor(p.solid);
             liquid = heatKernelFor(p.liquid);
             blended = forExponents(p.solid, []<int M, int N>() { return SumBlended(sumBlendedBatch<M, N>); });
+#if defined(__AVX512F__)
+            const auto direct = []<int M, int N>() {
+                if constexpr (M > 0 && N > 0) {
+                    return std::pair{SumCandidatesAndHeat(sumCandidatesAndHeat<M, N>),
+                                     SumBlendedCandidates(sumBlendedCandidates<M, N>)};
+                } else {
+                    return std::pair{SumCandidatesAndHeat(nullptr), SumBlendedCandidates(nullptr)};
+                }
+            };
+            std::tie(pureDirect, blendedDirect) = forExponents(p.solid, direct);
+#endif
         }
     }
 };
 
 /// sumRangeMixed for thermal scenes: the candidates of a cell gathered once per material
 /// with their temperatures; for each member and material, the force in the pair's phase
-/// and the heat flowing in (thermal_kernel.h). The heat is summed over each member's
-/// neighbours once collected, so crowded cells go in parts here too.
+/// and the heat flowing in (thermal_kernel.h), summed in the force's lanes: over the
+/// neighbours once collected, or straight over the candidates. The range is of whole
+/// cells, so crowded cells go in parts here too.
 void sumRangeThermal(const std::vector<ThermalKernel>& kernels, std::size_t kinds,
                      const NeighborGrid& grid, const Globules& s, bool uniformRadius,
                      std::size_t begin, std::size_t end, Accelerations& forces) {
@@ -400,12 +502,27 @@ void sumRangeThermal(const std::vector<ThermalKernel>& kernels, std::size_t kind
                 const ThermalKernel& kernel = kernels[mine * kinds + kind];
                 const ThermalPhase phase =
                     phaseOf(kernel.pair, t, ranges[kind].first, ranges[kind].second);
-                batch.count = 0;
-                collectNeighbors<true>(from[kind], s.px[k], s.py[k], s.pz[k], s.vx[k], s.vy[k],
-                                       s.vz[k], s.radius[k], kernel.reach2, batch);
                 // Each kernel sums the heat in the same lanes (HeatLanes): its bits do not
                 // depend on the phase picked.
                 float in;
+#if defined(__AVX512F__)
+                if (uniformRadius && kernel.pureDirect) {
+                    const CandidateLanes lanes(from[kind], memberAt(s, k), kernel.reach2);
+                    if (phase == ThermalPhase::Blend) {
+                        in = kernel.blendedDirect(kernel.pair, lanes, from[kind], t, kernel.reach2,
+                                                  fx, fy, fz);
+                    } else {
+                        const PairForce& p =
+                            phase == ThermalPhase::Solid ? kernel.pair.solid : kernel.pair.liquid;
+                        in = kernel.pureDirect(p, lanes, from[kind], t, kernel.reach2, fx, fy, fz);
+                    }
+                    heat += kernel.pair.conductance * in;
+                    continue;
+                }
+#endif
+                batch.count = 0;
+                collectNeighbors<true>(from[kind], s.px[k], s.py[k], s.pz[k], s.vx[k], s.vy[k],
+                                       s.vz[k], s.radius[k], kernel.reach2, batch);
                 if (phase == ThermalPhase::Blend) {
                     in = kernel.blended(kernel.pair, t, kernel.reach2, batch, fx, fy, fz);
                 } else if (phase == ThermalPhase::Solid) {
@@ -443,8 +560,9 @@ void thermal(Globules& g, const PairTable& pairs, NeighborWorkspace& w, Accelera
     const bool uniformRadius = smallest == largest;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, w.grain),
                       [&](const tbb::blocked_range<std::size_t>& r) {
-                          sumRangeThermal(kernels, kinds, w.grid, g, uniformRadius, r.begin(),
-                                          r.end(), forces);
+                          const auto [begin, end] = wholeCells(w.grid, g, r.begin(), r.end());
+                          sumRangeThermal(kernels, kinds, w.grid, g, uniformRadius, begin, end,
+                                          forces);
                       });
 }
 

@@ -6,6 +6,10 @@
 //   2. collectNeighbors, per member: those candidates within the pair's reach, compacted
 //      into a NeighborBatch of relative positions and V.P;
 //   3. sumBatch, per member: eq. (2)-(5) summed over the batch, every lane useful.
+// With AVX-512, integer exponents and a uniform radius, passes 2 and 3 are one
+// (CandidateLanes, sumCandidatesWith): the force summed over the candidates, the lanes
+// that are no neighbours masked out; there the compaction cost more than the force on
+// those lanes.
 // The grid hands about five candidates for each one within reach, so testing them cheaply
 // and evaluating the force only for the rest is what makes the loop fast. With AVX-512
 // the passes use 16 lanes (compress for the compaction, rsqrt14 + one Newton step for
@@ -559,12 +563,6 @@ private:
 };
 #endif
 
-/// What sumBatchWith does besides the force where the caller wants nothing more.
-struct NoBlockWork {
-    template <typename Mask, typename Lanes>
-    void operator()(uint32_t /*k*/, Mask /*live*/, Lanes /*d2*/) const {}
-};
-
 /// Adds to (fx, fy, fz) the force of eq. (2) from every neighbour in @p batch. On the
 /// AVX-512 path (integer exponents) it also calls @p perBlock(k, live, d2) for each block
 /// of lanes [k, k + 16): work that needs |P|^2 rides along instead of a pass of its own
@@ -657,6 +655,112 @@ inline void sumBatchWith(const PairForce& p, const NeighborBatch& batch, float& 
     fy += ay;
     fz += az;
 }
+
+/// A globule whose force the loop sums: its position, velocity and radius.
+struct Member {
+    float x, y, z, vx, vy, vz, r;
+};
+
+#if defined(__AVX512F__)
+/// One member's candidates (GroupCandidates, every globule of the member's radius: the
+/// list's uniformRadius), 16 at a time, for the AVX-512 sums that run straight over them:
+/// each block's P, |P|^2 and V.P, and which lanes are neighbours (0 < |P| < reach (r + r),
+/// reach^2 = @p reach2). No compaction into a NeighborBatch: the compaction's five
+/// compress-and-store sequences per 16 candidates cost more than the force's arithmetic on
+/// the candidates that are no neighbours (about half of a crowded part's,
+/// force_kernels.cpp): the liquid block stepped 1.09x faster, the dense pile 1.13x. Which
+/// lane a neighbour takes follows its place in the list, so a sum's bits follow the list's
+/// make-up: the force loop keeps each grid cell's group whole in one task.
+class CandidateLanes {
+public:
+    struct Block {
+        __mmask16 near;
+        __m512 dx, dy, dz, d2, vDotP;
+    };
+
+    CandidateLanes(const GroupCandidates& c, const Member& i, float reach2)
+        : mX(c.x.data()), mY(c.y.data()), mZ(c.z.data()),
+          mVx(c.vx.data()), mVy(c.vy.data()), mVz(c.vz.data()), mCount(c.count),
+          mPx(_mm512_set1_ps(i.x)), mPy(_mm512_set1_ps(i.y)), mPz(_mm512_set1_ps(i.z)),
+          mPvx(_mm512_set1_ps(i.vx)), mPvy(_mm512_set1_ps(i.vy)), mPvz(_mm512_set1_ps(i.vz)) {
+        const float sum = i.r + i.r, sum2 = sum * sum;
+        radiusSum = sum;
+        // The radius terms as the batch's uniform ones (sumBatchWith).
+        invSum2 = _mm512_set1_ps(1.0f / sum2);
+        minD2 = _mm512_set1_ps(kMinDistanceFraction * kMinDistanceFraction * sum2);
+        mLimit = _mm512_set1_ps(sum2 * reach2);
+    }
+
+    uint32_t count() const { return mCount; }
+
+    /// Candidates [j, j + 16). The padding past count is readable: plain loads, and a
+    /// masked test.
+    Block load(uint32_t j) const {
+        Block b;
+        const __mmask16 live = firstLanes(mCount - j);
+        b.dx = _mm512_sub_ps(mPx, _mm512_loadu_ps(mX + j));
+        b.dy = _mm512_sub_ps(mPy, _mm512_loadu_ps(mY + j));
+        b.dz = _mm512_sub_ps(mPz, _mm512_loadu_ps(mZ + j));
+        b.d2 = _mm512_fmadd_ps(b.dz, b.dz, _mm512_fmadd_ps(b.dy, b.dy, _mm512_mul_ps(b.dx, b.dx)));
+        b.near = _mm512_mask_cmp_ps_mask(live, b.d2, mLimit, _CMP_LT_OQ) &
+                 _mm512_cmp_ps_mask(b.d2, _mm512_setzero_ps(), _CMP_GT_OQ);
+        const __m512 dvx = _mm512_sub_ps(mPvx, _mm512_loadu_ps(mVx + j));
+        const __m512 dvy = _mm512_sub_ps(mPvy, _mm512_loadu_ps(mVy + j));
+        const __m512 dvz = _mm512_sub_ps(mPvz, _mm512_loadu_ps(mVz + j));
+        b.vDotP = _mm512_fmadd_ps(dvz, b.dz, _mm512_fmadd_ps(dvy, b.dy, _mm512_mul_ps(dvx, b.dx)));
+        return b;
+    }
+
+    float radiusSum;         ///< r_i + r_j of every pair
+    __m512 invSum2, minD2;  ///< 1 / (r_i + r_j)^2 and the smallest |P|^2 the force takes
+
+private:
+    const float *mX, *mY, *mZ, *mVx, *mVy, *mVz;
+    uint32_t mCount;
+    __m512 mPx, mPy, mPz, mPvx, mPvy, mPvz, mLimit;
+};
+
+/// Adds to (fx, fy, fz) the force of eq. (2) from every neighbour among @p lanes'
+/// candidates, and calls @p perBlock(j, near, d2) for each block [j, j + 16) (the heat,
+/// thermal_kernel.h). <M, N>: integer exponents (the pow() kernels compact first).
+template <int M, int N, typename PerBlock>
+inline void sumCandidatesWith(const PairForce& p, const CandidateLanes& lanes, float& fx,
+                              float& fy, float& fz, PerBlock&& perBlock) {
+    static_assert(M > 0 && N > 0, "integer exponents: the pow() kernels compact first");
+    const __m512 cr2 = _mm512_set1_ps(1.0f / (p.cr * p.cr));
+    const __m512 cd2 = _mm512_set1_ps(1.0f / (p.cd * p.cd));
+    const __m512 b1 = _mm512_set1_ps(p.b1), b2 = _mm512_set1_ps(p.b2);
+    __m512 ax = _mm512_setzero_ps(), ay = ax, az = ax;
+    for (uint32_t j = 0; j < lanes.count(); j += 16) {
+        const CandidateLanes::Block b = lanes.load(j);
+        const __m512 scale =
+            pairScale<M, N>(b.d2, lanes.invSum2, lanes.minD2, b1, b2, cr2, cd2, b.vDotP);
+        perBlock(j, b.near, b.d2);
+        ax = _mm512_mask3_fmadd_ps(scale, b.dx, ax, b.near);
+        ay = _mm512_mask3_fmadd_ps(scale, b.dy, ay, b.near);
+        az = _mm512_mask3_fmadd_ps(scale, b.dz, az, b.near);
+    }
+    fx += _mm512_reduce_add_ps(ax);
+    fy += _mm512_reduce_add_ps(ay);
+    fz += _mm512_reduce_add_ps(az);
+}
+#endif
+
+/// What sumBatchWith and sumCandidatesWith do besides the force where the caller wants
+/// nothing more.
+struct NoBlockWork {
+    template <typename Mask, typename Lanes>
+    void operator()(uint32_t /*k*/, Mask /*live*/, Lanes /*d2*/) const {}
+};
+
+#if defined(__AVX512F__)
+/// sumCandidatesWith with nothing besides the force.
+template <int M, int N>
+inline void sumCandidates(const PairForce& p, const CandidateLanes& lanes, float& fx, float& fy,
+                          float& fz) {
+    sumCandidatesWith<M, N>(p, lanes, fx, fy, fz, NoBlockWork{});
+}
+#endif
 
 /// sumBatchWith with nothing besides the force.
 template <int M, int N>

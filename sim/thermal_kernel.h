@@ -7,7 +7,10 @@
 //   - the force is pair_kernel.h's sumBatch with the phase's constants (sumBatchAndHeat),
 //     or, where pairs melt, sumBlendedBatch below;
 //   - the heat flowing in is summed over the neighbours once collected (HeatLanes), in
-//     the force's loop with AVX-512.
+//     the force's loop with AVX-512;
+//   - with AVX-512, shared integer exponents and a uniform radius, all three run straight
+//     over the candidates instead (sumCandidatesAndHeat, sumBlendedCandidates), in the
+//     same lanes, as the plain loop does (pair_kernel.h, CandidateLanes).
 // The blend is of what the kernel uses, b1, b2, 1/C_r^2 and 1/C_d^2 (and m, n on the
 // generic path), as (1 - s) solid + s liquid: exactly the solid's at s = 0 and exactly
 // the liquid's at s = 1, so the three ways agree bit for bit where they overlap, and
@@ -80,20 +83,28 @@ inline std::pair<float, float> temperatureRange(const float* t, uint32_t count) 
 /// block of lanes at a time: w (T_j - T_i) with w = 1 - d^2 / (reach^2 (r_i + r_j)^2),
 /// reach^2 = @p reach2. The weight comes from a division, not an estimate, so w_ij equals
 /// w_ji bit for bit and conduction conserves heat to the sum's rounding. The sum runs over
-/// the batch in its order, in the build's widest lanes (16 with AVX-512, 8 with AVX2):
-/// a globule meets its neighbours in the same order however a task's range cuts its
-/// cell's group or a crowded group is split (force_kernels.cpp), so its heat has the same
-/// bits on any thread count. Every kernel below sums it with this one class, in the
-/// force's own loop or in a pass of its own (batchHeat), so its bits do not depend on
-/// which kernel the pair's phase picks either.
+/// the batch in its order, in the build's widest lanes (16 with AVX-512, 8 with AVX2), or
+/// over a member's candidates in theirs (CandidateLanes); the force loop hands every task
+/// whole cells, so a globule meets the same candidates and neighbours in the same order on
+/// any thread count, and its heat has the same bits. Every kernel below sums it with this
+/// one class, in the force's own loop or in a pass of its own (batchHeat), so its bits do
+/// not depend on which kernel the pair's phase picks either.
 class HeatLanes {
 public:
     HeatLanes(const NeighborBatch& batch, float ti, float reach2)
-        : mSums(batch.radiusSum.data()),
-          mTemperatures(batch.temperature.data()),
-          mUniform(batch.uniformSum > 0) {
-        const float uniformInvLimit =
-            mUniform ? 1.0f / (batch.uniformSum * batch.uniformSum * reach2) : 0;
+        : HeatLanes(batch.radiusSum.data(), batch.temperature.data(), batch.uniformSum, ti,
+                    reach2) {}
+
+    /// Over a member's candidates (CandidateLanes), whose pairs all have r_i + r_j =
+    /// @p uniformSum: the sum then runs in the candidates' lanes.
+    HeatLanes(const GroupCandidates& c, float uniformSum, float ti, float reach2)
+        : HeatLanes(nullptr, c.temperature.data(), uniformSum, ti, reach2) {}
+
+private:
+    HeatLanes(const float* sums, const float* temperatures, float uniformSum, float ti,
+              float reach2)
+        : mSums(sums), mTemperatures(temperatures), mUniform(uniformSum > 0) {
+        const float uniformInvLimit = mUniform ? 1.0f / (uniformSum * uniformSum * reach2) : 0;
 #if defined(__AVX512F__)
         mTi = _mm512_set1_ps(ti);
         mReach2 = _mm512_set1_ps(reach2);
@@ -108,6 +119,8 @@ public:
         mUniformInvLimit = uniformInvLimit;
 #endif
     }
+
+public:
 
 #if defined(__AVX512F__)
     /// Adds the terms of the live lanes of [k, k + 16), whose |P|^2 is @p d2.
@@ -207,6 +220,90 @@ inline float sumBatchAndHeat(const PairForce& p, const NeighborBatch& batch, flo
     return batchHeat(batch, ti, reach2);
 }
 
+#if defined(__AVX512F__)
+/// The blended constants of a globule at @p ti's pairs, 16 lanes at a time (the AVX-512
+/// blended sums): b1, b2, 1/C_r^2 and 1/C_d^2 as (1 - s) solid + s liquid, s the
+/// smoothstep of each pair's mean temperature.
+class BlendLanes {
+public:
+    struct Constants {
+        __m512 b1, b2, cr2, cd2;
+    };
+
+    BlendLanes(const ThermalPair& pair, float ti)
+        : mTi(_mm512_set1_ps(ti)), mTs(_mm512_set1_ps(pair.tSolid)),
+          mTl(_mm512_set1_ps(pair.tLiquid)), mInvRange(_mm512_set1_ps(pair.invRange)),
+          mSolid(constantsOf(pair.solid)), mLiquid(constantsOf(pair.liquid)) {}
+
+    /// For the neighbours at temperatures @p tj.
+    Constants at(__m512 tj) const {
+        const __m512 one = _mm512_set1_ps(1), zero = _mm512_setzero_ps();
+        // s: smoothstep of the pair's mean temperature; exactly 1 from T_liquid up,
+        // whatever (t - T_solid) / range rounds to.
+        const __m512 t = _mm512_mul_ps(_mm512_set1_ps(0.5f), _mm512_add_ps(mTi, tj));
+        __m512 x = _mm512_mul_ps(_mm512_sub_ps(t, mTs), mInvRange);
+        x = _mm512_min_ps(one, _mm512_max_ps(zero, x));
+        x = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(t, mTl, _CMP_GE_OQ), x, one);
+        const __m512 s =
+            _mm512_mul_ps(_mm512_mul_ps(x, x),
+                          _mm512_fnmadd_ps(_mm512_set1_ps(2), x, _mm512_set1_ps(3)));
+        const __m512 r = _mm512_sub_ps(one, s);
+        const auto blend = [&](__m512 a, __m512 b) {
+            return _mm512_fmadd_ps(s, b, _mm512_mul_ps(r, a));
+        };
+        return {blend(mSolid.b1, mLiquid.b1), blend(mSolid.b2, mLiquid.b2),
+                blend(mSolid.cr2, mLiquid.cr2), blend(mSolid.cd2, mLiquid.cd2)};
+    }
+
+private:
+    static Constants constantsOf(const PairForce& p) {
+        return {_mm512_set1_ps(p.b1), _mm512_set1_ps(p.b2), _mm512_set1_ps(1.0f / (p.cr * p.cr)),
+                _mm512_set1_ps(1.0f / (p.cd * p.cd))};
+    }
+
+    __m512 mTi, mTs, mTl, mInvRange;
+    Constants mSolid, mLiquid;
+};
+
+/// sumBatchAndHeat straight over a member's candidates (CandidateLanes), which carry their
+/// temperatures; the heat in the same blocks.
+template <int M, int N>
+inline float sumCandidatesAndHeat(const PairForce& p, const CandidateLanes& lanes,
+                                  const GroupCandidates& c, float ti, float reach2, float& fx,
+                                  float& fy, float& fz) {
+    HeatLanes heat(c, lanes.radiusSum, ti, reach2);
+    sumCandidatesWith<M, N>(p, lanes, fx, fy, fz,
+                            [&](uint32_t j, __mmask16 near, __m512 d2) { heat.add(j, near, d2); });
+    return heat.total();
+}
+
+/// sumBlendedBatch straight over a member's candidates: the same blocks and heat lanes as
+/// sumCandidatesAndHeat, so that where a pure phase holds the two give the same bits.
+template <int M, int N>
+inline float sumBlendedCandidates(const ThermalPair& pair, const CandidateLanes& lanes,
+                                  const GroupCandidates& c, float ti, float reach2, float& fx,
+                                  float& fy, float& fz) {
+    const BlendLanes blend(pair, ti);
+    HeatLanes heat(c, lanes.radiusSum, ti, reach2);
+    const float* ct = c.temperature.data();
+    __m512 ax = _mm512_setzero_ps(), ay = ax, az = ax;
+    for (uint32_t j = 0; j < lanes.count(); j += 16) {
+        const CandidateLanes::Block b = lanes.load(j);
+        const BlendLanes::Constants k = blend.at(_mm512_loadu_ps(ct + j));
+        const __m512 scale = pairScale<M, N>(b.d2, lanes.invSum2, lanes.minD2, k.b1, k.b2,
+                                             k.cr2, k.cd2, b.vDotP);
+        heat.add(j, b.near, b.d2);
+        ax = _mm512_mask3_fmadd_ps(scale, b.dx, ax, b.near);
+        ay = _mm512_mask3_fmadd_ps(scale, b.dy, ay, b.near);
+        az = _mm512_mask3_fmadd_ps(scale, b.dz, az, b.near);
+    }
+    fx += _mm512_reduce_add_ps(ax);
+    fy += _mm512_reduce_add_ps(ay);
+    fz += _mm512_reduce_add_ps(az);
+    return heat.total();
+}
+#endif
+
 /// Adds to (fx, fy, fz) the force of every neighbour in @p batch (which holds their
 /// temperatures) on a globule at temperature @p ti, each pair's constants blended by its
 /// mean temperature, and returns the heat flowing in (HeatLanes, @p reach2). <M, N>: the
@@ -224,20 +321,11 @@ inline float sumBlendedBatch(const ThermalPair& pair, float ti, float reach2,
 #if defined(__AVX512F__)
     if constexpr (M > 0 && N > 0) {
         const __m512 one = _mm512_set1_ps(1), zero = _mm512_setzero_ps();
-        const __m512 half = _mm512_set1_ps(0.5f), two = _mm512_set1_ps(2), three = _mm512_set1_ps(3);
-        const __m512 tI = _mm512_set1_ps(ti);
-        const __m512 tS = _mm512_set1_ps(pair.tSolid), tL = _mm512_set1_ps(pair.tLiquid),
-                     invRange = _mm512_set1_ps(pair.invRange);
-        const __m512 b1S = _mm512_set1_ps(solid.b1), b2S = _mm512_set1_ps(solid.b2),
-                     cr2S = _mm512_set1_ps(1.0f / (solid.cr * solid.cr)),
-                     cd2S = _mm512_set1_ps(1.0f / (solid.cd * solid.cd));
-        const __m512 b1L = _mm512_set1_ps(liquid.b1), b2L = _mm512_set1_ps(liquid.b2),
-                     cr2L = _mm512_set1_ps(1.0f / (liquid.cr * liquid.cr)),
-                     cd2L = _mm512_set1_ps(1.0f / (liquid.cd * liquid.cd));
         const float fixedSum2 = batch.uniformSum * batch.uniformSum;
         const __m512 fixedInvSum2 = _mm512_set1_ps(uniform ? 1.0f / fixedSum2 : 0.0f);
         const __m512 fixedMinD2 =
             _mm512_set1_ps(kMinDistanceFraction * kMinDistanceFraction * fixedSum2);
+        const BlendLanes blend(pair, ti);
         __m512 ax = zero, ay = zero, az = zero;
         HeatLanes heat(batch, ti, reach2);
         for (uint32_t k = 0; k < count; k += 16) {
@@ -248,18 +336,9 @@ inline float sumBlendedBatch(const ThermalPair& pair, float ti, float reach2,
             const __m512 dz = _mm512_maskz_loadu_ps(live, bz + k);
             __m512 invSum2 = fixedInvSum2, minD2 = fixedMinD2;
             if (!uniform) radiusSumTerms(_mm512_mask_loadu_ps(one, live, bsum + k), invSum2, minD2);
-            // s: smoothstep of the pair's mean temperature; exactly 1 from T_liquid up,
-            // whatever (t - T_solid) / range rounds to.
-            const __m512 t = _mm512_mul_ps(half, _mm512_add_ps(tI, _mm512_maskz_loadu_ps(live, bt + k)));
-            __m512 x = _mm512_min_ps(one, _mm512_max_ps(zero, _mm512_mul_ps(_mm512_sub_ps(t, tS), invRange)));
-            x = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(t, tL, _CMP_GE_OQ), x, one);
-            const __m512 s = _mm512_mul_ps(_mm512_mul_ps(x, x), _mm512_fnmadd_ps(two, x, three));
-            const __m512 r = _mm512_sub_ps(one, s);
-            const auto blend = [&](__m512 a, __m512 b) { return _mm512_fmadd_ps(s, b, _mm512_mul_ps(r, a)); };
-            const __m512 b1 = blend(b1S, b1L), b2 = blend(b2S, b2L), cr2 = blend(cr2S, cr2L),
-                         cd2 = blend(cd2S, cd2L);
+            const BlendLanes::Constants c = blend.at(_mm512_maskz_loadu_ps(live, bt + k));
             const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
-            const __m512 scale = pairScale<M, N>(d2, invSum2, minD2, b1, b2, cr2, cd2,
+            const __m512 scale = pairScale<M, N>(d2, invSum2, minD2, c.b1, c.b2, c.cr2, c.cd2,
                                                  _mm512_maskz_loadu_ps(live, bvp + k));
             heat.add(k, live, d2);
             ax = _mm512_mask3_fmadd_ps(scale, dx, ax, live);

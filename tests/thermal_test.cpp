@@ -53,13 +53,16 @@ MaterialSettings wax(const std::string& name = "wax") {
 
 /// @p n globules jittered in a box, at random temperatures in [0, 100]; two materials
 /// when @p two.
-Globules warmCloud(std::size_t n, uint32_t seed, bool two) {
+/// @p uniformRadius: every radius 1, not 0.7 and 1 (the AVX-512 loop then sums straight
+/// over the candidates: pair_kernel.h).
+Globules warmCloud(std::size_t n, uint32_t seed, bool two, bool uniformRadius = false) {
     std::mt19937 random(seed);
     std::uniform_real_distribution<float> at(-3, 3), speed(-0.5, 0.5), hot(0, 100);
     Globules g;
     for (std::size_t i = 0; i < n; ++i) {
+        const float radius = i % 3 == 0 && !uniformRadius ? 0.7f : 1.0f;
         g.add({at(random), at(random), at(random)}, {speed(random), speed(random), speed(random)},
-              i % 3 == 0 ? 0.7f : 1.0f, i % 4 == 0 ? 2.0f : 1.0f, int32_t(i));
+              radius, i % 4 == 0 ? 2.0f : 1.0f, int32_t(i));
         g.temperature.push_back(hot(random));
         if (two) g.material.push_back(uint8_t(i % 2));
     }
@@ -193,8 +196,9 @@ TEST(Thermal, BlendIsExactlyTheSolidAtTSolidAndTheLiquidAtTLiquid) {
     EXPECT_FLOAT_EQ(meltFraction(45, pair), 0.15625f);  // x = 1/4: 3/16 - 2/64
 }
 
-/// HeatAndForceDoNotDependOnTheKernelThePhasePicks for @p material.
-void expectSameResultsWhicheverKernel(const MaterialSettings& material) {
+/// HeatAndForceDoNotDependOnTheKernelThePhasePicks for @p material; radii 0.7 and 1, or
+/// with @p uniformRadius all 1 (the AVX-512 loop then sums straight over the candidates).
+void expectSameResultsWhicheverKernel(const MaterialSettings& material, bool uniformRadius) {
     const PairTable table({material}, {});
     const ThermalPair& pair = table.thermal(0, 0);
     const float reach = std::max(pair.solid.cutoff(1.0f), pair.liquid.cutoff(1.0f));
@@ -202,24 +206,25 @@ void expectSameResultsWhicheverKernel(const MaterialSettings& material) {
     std::uniform_real_distribution<float> at(-9, 9), speed(-0.5, 0.5), warm(60, 100);
     Globules liquid;
     for (int i = 0; i < 2500; ++i) {
-        const float radius = i % 3 == 0 ? 0.7f : 1.0f;
+        const float radius = i % 3 == 0 && !uniformRadius ? 0.7f : 1.0f;
         liquid.add({at(random), at(random), at(random)},
                    {speed(random), speed(random), speed(random)}, radius, 1.0f, i);
         liquid.temperature.push_back(warm(random));  // every pair's mean is above T_liquid
     }
+    // Two globules chilled where they are: every candidate list stays as it was, but
+    // the groups that take a cold one as a candidate pick the blended kernel.
     Globules chilled = liquid;
-    const std::vector<Vec3> cold = {{-4, 1, 2}, {5, -3, -1}};
-    for (std::size_t c = 0; c < cold.size(); ++c) {
-        chilled.add(cold[c], {0, 0, 0}, 1.0f, 1.0f, int32_t(10000 + c));
-        chilled.temperature.push_back(0);
-    }
+    const std::vector<std::size_t> cold = {1, 2};  // (radius 1 in both clouds)
+    for (std::size_t c : cold) chilled.temperature[c] = 0;
     // The globules beyond reach of every cold one, and how many of them are within two
     // reaches of one (where groups take the cold ones as candidates).
     std::vector<bool> untouched(liquid.size(), true);
     std::size_t nearby = 0;
     for (std::size_t i = 0; i < liquid.size(); ++i) {
         double closest = 1e30;
-        for (const Vec3& c : cold) closest = std::min(closest, length(liquid.position(i) - c));
+        for (std::size_t c : cold) {
+            closest = std::min(closest, length(liquid.position(i) - liquid.position(c)));
+        }
         const double limit = reach * (liquid.radius[i] + 1.0f) * 1.01;
         untouched[i] = closest > limit;
         nearby += untouched[i] && closest < 2 * limit;
@@ -229,7 +234,7 @@ void expectSameResultsWhicheverKernel(const MaterialSettings& material) {
     NeighborWorkspace w1, w2;
     pairForcesThermal(liquid, table, w1, alone);
     pairForcesThermal(chilled, table, w2, withCold);
-    std::vector<std::size_t> byId(chilled.size() + 10000);
+    std::vector<std::size_t> byId(chilled.size());
     for (std::size_t k = 0; k < chilled.size(); ++k) byId[std::size_t(chilled.id[k])] = k;
     std::size_t compared = 0, heated = 0;
     for (std::size_t k = 0; k < liquid.size(); ++k) {
@@ -250,16 +255,20 @@ void expectSameResultsWhicheverKernel(const MaterialSettings& material) {
 /// A globule's heat and force have the same bits whichever kernel the loop picks for its
 /// pairs' phase (force_kernels.cpp): the pure phase's, or the blend's, which the loop takes
 /// when any of the group's candidates is outside the pure range, neighbour or not. A
-/// liquid cloud is summed alone and then with a few cold globules among it: every globule
-/// that has no cold one within reach forms the same liquid pairs in the same order either
-/// way, though near the cold ones it is summed by the blended kernel, so its results must
-/// not change by a bit.
+/// liquid cloud is summed as it is and then with two of its globules chilled: every
+/// globule that has no cold one within reach forms the same liquid pairs from the same
+/// candidates either way, though near the cold ones it is summed by the blended kernel, so
+/// its results must not change by a bit.
 TEST(Thermal, HeatAndForceDoNotDependOnTheKernelThePhasePicks) {
     MaterialSettings unshared = evenWax();  // the phases' exponents differ: pow() kernels
     unshared.liquid.n = 4;
     for (const MaterialSettings& material : {evenWax(), unshared}) {
-        SCOPED_TRACE(material.liquid.n == 4 ? "exponents differ" : "exponents shared");
-        expectSameResultsWhicheverKernel(material);
+        for (bool uniformRadius : {false, true}) {
+            const bool differ = material.liquid.n == 4;
+            SCOPED_TRACE(std::string(differ ? "exponents differ" : "exponents shared") +
+                         (uniformRadius ? ", uniform radius" : ""));
+            expectSameResultsWhicheverKernel(material, uniformRadius);
+        }
     }
 }
 
@@ -297,38 +306,44 @@ TEST(Thermal, GridLoopMatchesTheAllPairsReference) {
     other.liquid.b1 = 1.5;
     other.conductivity = 2;
     const PairTable table({wax("a"), other}, {});
-    const Globules reference = warmCloud(600, 5, true);
-    Accelerations exact;
-    pairForcesThermalAllPairs(reference, table, exact);
-    Globules sorted = reference;
-    NeighborWorkspace workspace;
-    Accelerations grid;
-    pairForcesThermal(sorted, table, workspace, grid);
-    std::size_t checked = 0;
-    for (std::size_t k = 0; k < sorted.size(); ++k) {
-        const std::size_t i = std::size_t(sorted.id[k]);
-        ASSERT_EQ(sorted.temperature[k], reference.temperature[i]);
-        const double scale = 1 + std::abs(exact.x[i]) + std::abs(exact.y[i]) + std::abs(exact.z[i]);
-        EXPECT_NEAR(grid.x[k], exact.x[i], 1e-4 * scale) << k;
-        EXPECT_NEAR(grid.y[k], exact.y[i], 1e-4 * scale) << k;
-        EXPECT_NEAR(grid.z[k], exact.z[i], 1e-4 * scale) << k;
-        EXPECT_NEAR(grid.heat[k], exact.heat[i], 1e-4 * (1 + std::abs(exact.heat[i]))) << k;
-        checked += exact.heat[i] != 0;
+    for (bool uniformRadius : {false, true}) {
+        SCOPED_TRACE(uniformRadius ? "uniform radius" : "two radii");
+        const Globules reference = warmCloud(600, 5, true, uniformRadius);
+        Accelerations exact;
+        pairForcesThermalAllPairs(reference, table, exact);
+        Globules sorted = reference;
+        NeighborWorkspace workspace;
+        Accelerations grid;
+        pairForcesThermal(sorted, table, workspace, grid);
+        std::size_t checked = 0;
+        for (std::size_t k = 0; k < sorted.size(); ++k) {
+            const std::size_t i = std::size_t(sorted.id[k]);
+            ASSERT_EQ(sorted.temperature[k], reference.temperature[i]);
+            const double scale =
+                1 + std::abs(exact.x[i]) + std::abs(exact.y[i]) + std::abs(exact.z[i]);
+            EXPECT_NEAR(grid.x[k], exact.x[i], 1e-4 * scale) << k;
+            EXPECT_NEAR(grid.y[k], exact.y[i], 1e-4 * scale) << k;
+            EXPECT_NEAR(grid.z[k], exact.z[i], 1e-4 * scale) << k;
+            EXPECT_NEAR(grid.heat[k], exact.heat[i], 1e-4 * (1 + std::abs(exact.heat[i]))) << k;
+            checked += exact.heat[i] != 0;
+        }
+        EXPECT_GT(checked, 500u);
     }
-    EXPECT_GT(checked, 500u);
 }
 
-// Crowded cells (about 180 globules a cell group, split in parts where the heat is summed
-// over the compacted neighbours), cut at other places by other thread counts' ranges and
-// by a small grain (a few globules per task): the heat and the forces are the same bits.
+// Crowded cells (about 180 globules a cell group, split in parts), cut at other places by
+// other thread counts' ranges and by a small grain (a few globules per task): the heat and
+// the forces are the same bits, also where (a uniform radius, AVX-512) they are summed in
+// the candidates' lanes, which follow the cell's group.
 TEST(Thermal, CrowdedCellsGiveTheSameBitsOnAnyThreadCount) {
     MaterialSettings other = wax("b");
     other.tSolid = 20;
     other.tLiquid = 90;
     other.conductivity = 2;
-    for (bool two : {false, true}) {
+    for (int variant = 0; variant < 4; ++variant) {
+        const bool two = variant % 2 == 1, uniformRadius = variant >= 2;
         const PairTable table = two ? PairTable({wax("a"), other}, {}) : PairTable({other}, {});
-        const Globules cloud = warmCloud(3000, 9, two);
+        const Globules cloud = warmCloud(3000, 9, two, uniformRadius);
         std::vector<Accelerations> byThreads;
         std::vector<std::string> runs;
         for (std::size_t grain : {std::size_t(256), std::size_t(5)}) {
@@ -344,7 +359,8 @@ TEST(Thermal, CrowdedCellsGiveTheSameBitsOnAnyThreadCount) {
             }
         }
         for (std::size_t t = 1; t < byThreads.size(); ++t) {
-            SCOPED_TRACE(runs[t] + (two ? ", two materials" : ""));
+            SCOPED_TRACE(runs[t] + (two ? ", two materials" : "") +
+                         (uniformRadius ? ", uniform radius" : ""));
             EXPECT_EQ(byThreads[t].heat, byThreads[0].heat);
             EXPECT_EQ(byThreads[t].x, byThreads[0].x);
             EXPECT_EQ(byThreads[t].z, byThreads[0].z);
