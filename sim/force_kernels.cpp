@@ -206,22 +206,22 @@ void sumRange(const PairForce& pair, const NeighborGrid& grid, const Globules& s
         forEachMember(s, first, group, groupReach, candidates, parts,
                       [&](const std::vector<GroupCandidates>& from, std::size_t k) {
                           float fx = 0, fy = 0, fz = 0;
+                          bool summed = false;
 #if defined(__AVX512F__)
                           if constexpr (M > 0 && N > 0) {
                               if (uniformRadius) {
                                   const CandidateLanes lanes(from[0], memberAt(s, k), reach2);
                                   sumCandidates<M, N>(pair, lanes, fx, fy, fz);
-                                  forces.x[k] = fx;
-                                  forces.y[k] = fy;
-                                  forces.z[k] = fz;
-                                  return;
+                                  summed = true;
                               }
                           }
 #endif
-                          batch.count = 0;
-                          collectNeighbors(from[0], s.px[k], s.py[k], s.pz[k], s.vx[k], s.vy[k],
-                                           s.vz[k], s.radius[k], reach2, batch);
-                          sumBatch<M, N>(pair, batch, fx, fy, fz);
+                          if (!summed) {
+                              batch.count = 0;
+                              collectNeighbors(from[0], s.px[k], s.py[k], s.pz[k], s.vx[k],
+                                               s.vy[k], s.vz[k], s.radius[k], reach2, batch);
+                              sumBatch<M, N>(pair, batch, fx, fy, fz);
+                          }
                           forces.x[k] = fx;
                           forces.y[k] = fy;
                           forces.z[k] = fz;

@@ -668,7 +668,7 @@ struct Member {
 /// reach^2 = @p reach2). No compaction into a NeighborBatch: the compaction's five
 /// compress-and-store sequences per 16 candidates cost more than the force's arithmetic on
 /// the candidates that are no neighbours (about half of a crowded part's,
-/// force_kernels.cpp): the liquid block stepped 1.09x faster, the dense pile 1.13x. Which
+/// force_kernels.cpp): the liquid block stepped 1.09x faster, the dense pile 1.12x. Which
 /// lane a neighbour takes follows its place in the list, so a sum's bits follow the list's
 /// make-up: the force loop keeps each grid cell's group whole in one task.
 class CandidateLanes {
