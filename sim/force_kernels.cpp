@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include "cell_group.h"
+#include "each_pair_once.h"
 #include "force_kernels.h"
 #include "thermal_kernel.h"
 
@@ -25,133 +27,6 @@
 namespace globular {
 
 namespace {
-
-/// One grid cell's members in a range of globules in grid order, and what is around them.
-struct CellGroup {
-    std::size_t last = 0;      ///< the members are [first, last)
-    float lo[3], hi[3];        ///< the members' bounding box
-    int runCount = 0;          ///< runs of candidates in the 27 cells around
-    std::size_t total = 0;     ///< globules in those runs
-    std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> runs;
-};
-
-#if defined(__AVX512F__)
-/// Globule @p k of @p s as a member whose force is summed (CandidateLanes).
-Member memberAt(const Globules& s, std::size_t k) {
-    return {s.px[k], s.py[k], s.pz[k], s.vx[k], s.vy[k], s.vz[k], s.radius[k]};
-}
-#endif
-
-/// Grows the box [@p lo, @p hi] to hold globule @p k of @p s.
-void growBox(const Globules& s, std::size_t k, float lo[3], float hi[3]) {
-    const float p[3] = {s.px[k], s.py[k], s.pz[k]};
-    for (int a = 0; a < 3; ++a) {
-        lo[a] = std::min(lo[a], p[a]);
-        hi[a] = std::max(hi[a], p[a]);
-    }
-}
-
-/// The group of globule @p first's cell within [first, end) of @p s.
-void groupAt(const NeighborGrid& grid, const Globules& s, std::size_t first, std::size_t end,
-             NeighborGrid::RunCursor& cursor, CellGroup& group) {
-    const auto cell = grid.cellOf(s.px[first], s.py[first], s.pz[first]);
-    const float start[3] = {s.px[first], s.py[first], s.pz[first]};
-    for (int a = 0; a < 3; ++a) group.lo[a] = group.hi[a] = start[a];
-    std::size_t last = first + 1;
-    for (; last < end && grid.cellOf(s.px[last], s.py[last], s.pz[last]) == cell; ++last) {
-        growBox(s, last, group.lo, group.hi);
-    }
-    group.last = last;
-    group.runCount = grid.neighborRuns(s.px[first], s.py[first], s.pz[first], cursor, group.runs);
-    group.total = 0;
-    for (int b = 0; b < group.runCount; ++b) group.total += group.runs[b].second - group.runs[b].first;
-}
-
-/// A crowded group's members in up to four parts, split at the middle of the group's box
-/// in y and z, each part with its own box. A part's box is about half the group's in two
-/// axes, so its candidates, filtered from the group's, are about half as many, and each
-/// member tests only its part's. In the dense pile (about 60 members a group, ~2 000
-/// candidates) the second filter costs a member ~130 tests and spares it ~900 (estimates
-/// from the boxes' volumes); its step measured 1.3x faster. Eight parts (x split too)
-/// measured no faster.
-struct GroupParts {
-    static constexpr int kMax = 4;
-    /// Smaller groups are not split. Split from 16, the liquid block (4-18 members a
-    /// group) measured perhaps 5 % slower; the pour's simulation stage gained 1.22x split
-    /// from 16, 1.18x from 24 and 1.07x from 32.
-    static constexpr std::size_t kMinMembers = 24;
-    int count = 0;
-    std::array<uint32_t, kMax + 1> start{};  ///< part p is members[start[p], start[p + 1])
-    std::array<std::array<float, 3>, kMax> lo, hi;
-    std::vector<uint32_t> members;  ///< globule indices, part by part
-    std::vector<GroupCandidates> candidates;  ///< the part at hand's, one list per material
-    bool temperatures = false;  ///< the candidates carry temperatures (thermal scenes)
-};
-
-/// Splits @p group's members [first, group.last) of @p s into @p parts (none empty).
-void splitGroup(const Globules& s, std::size_t first, const CellGroup& group, GroupParts& parts) {
-    const float midY = 0.5f * (group.lo[1] + group.hi[1]);
-    const float midZ = 0.5f * (group.lo[2] + group.hi[2]);
-    const auto partOf = [&](std::size_t k) {
-        return int(s.py[k] > midY) + 2 * int(s.pz[k] > midZ);
-    };
-    std::array<uint32_t, GroupParts::kMax + 1> fill{};
-    for (std::size_t k = first; k < group.last; ++k) ++fill[partOf(k) + 1];
-    for (int p = 0; p < GroupParts::kMax; ++p) fill[p + 1] += fill[p];
-    const auto bounds = fill;
-    parts.members.resize(group.last - first);
-    for (std::size_t k = first; k < group.last; ++k) parts.members[fill[partOf(k)]++] = uint32_t(k);
-    parts.count = 0;
-    for (int p = 0; p < GroupParts::kMax; ++p) {
-        if (bounds[p] == bounds[p + 1]) continue;
-        const int q = parts.count++;
-        parts.start[q] = bounds[p];
-        parts.start[q + 1] = bounds[p + 1];
-        auto& lo = parts.lo[q];
-        auto& hi = parts.hi[q];
-        const uint32_t k0 = parts.members[bounds[p]];
-        lo = hi = {s.px[k0], s.py[k0], s.pz[k0]};
-        for (uint32_t m = bounds[p] + 1; m < bounds[p + 1]; ++m) {
-            growBox(s, parts.members[m], lo.data(), hi.data());
-        }
-    }
-}
-
-/// @p c as globule arrays: the source of a part's candidates; @p temperatures: with theirs.
-GlobuleArrays arraysOf(const GroupCandidates& c, bool temperatures) {
-    return {c.x.data(),  c.y.data(),  c.z.data(),      c.vx.data(),
-            c.vy.data(), c.vz.data(), c.radius.data(), temperatures ? c.temperature.data() : nullptr};
-}
-
-/// Calls sum(from, k) for every member k of @p group ([first, group.last) of @p s), @p from
-/// being the candidate lists (one per material) that k is to test: the group's
-/// @p candidates or, in a crowded group, its part's, filtered from them (GroupParts).
-template <typename Sum>
-void forEachMember(const Globules& s, std::size_t first, const CellGroup& group, float groupReach,
-                   const std::vector<GroupCandidates>& candidates, GroupParts& parts, Sum&& sum) {
-    if (group.last - first < GroupParts::kMinMembers) {
-        for (std::size_t k = first; k < group.last; ++k) sum(candidates, k);
-        return;
-    }
-    splitGroup(s, first, group, parts);
-    parts.candidates.resize(candidates.size());
-    for (std::size_t kind = 0; kind < candidates.size(); ++kind) {
-        parts.candidates[kind].uniformRadius = candidates[kind].uniformRadius;
-        parts.candidates[kind].reserve(candidates[kind].count);
-    }
-    for (int p = 0; p < parts.count; ++p) {
-        for (std::size_t kind = 0; kind < candidates.size(); ++kind) {
-            GroupCandidates& part = parts.candidates[kind];
-            part.count = 0;
-            collectGroupCandidates(arraysOf(candidates[kind], parts.temperatures), 0,
-                                   candidates[kind].count,
-                                   parts.lo[p].data(), parts.hi[p].data(), groupReach, part);
-        }
-        for (uint32_t m = parts.start[p]; m < parts.start[p + 1]; ++m) {
-            sum(parts.candidates, parts.members[m]);
-        }
-    }
-}
 
 /// The range of whole grid cells that a task's range [@p begin, @p end) of @p s (in grid
 /// order) stands for: each bound moved on to the first globule of a cell. Every cell then
@@ -176,8 +51,9 @@ std::pair<std::size_t, std::size_t> wholeCells(const NeighborGrid& grid, const G
 /// handled as a group with shared candidates, crowded groups in parts (GroupParts). A
 /// part's candidates keep the group's order, and every filter is conservative (the pair
 /// test decides), so each globule's neighbours are the same whichever way its group is
-/// split. With AVX-512 and a uniform radius the force is summed straight over the
-/// candidates (CandidateLanes); elsewhere over the neighbours once compacted.
+/// split. The force is summed over each member's neighbours once compacted; with AVX-512,
+/// a uniform radius and integer exponents the loop that evaluates each pair once runs
+/// instead (sumPairsOnce).
 template <int M, int N>
 void sumRange(const PairForce& pair, const NeighborGrid& grid, const Globules& s,
               bool uniformRadius, std::size_t begin, std::size_t end, Accelerations& forces) {
@@ -206,22 +82,10 @@ void sumRange(const PairForce& pair, const NeighborGrid& grid, const Globules& s
         forEachMember(s, first, group, groupReach, candidates, parts,
                       [&](const std::vector<GroupCandidates>& from, std::size_t k) {
                           float fx = 0, fy = 0, fz = 0;
-                          bool summed = false;
-#if defined(__AVX512F__)
-                          if constexpr (M > 0 && N > 0) {
-                              if (uniformRadius) {
-                                  const CandidateLanes lanes(from[0], memberAt(s, k), reach2);
-                                  sumCandidates<M, N>(pair, lanes, fx, fy, fz);
-                                  summed = true;
-                              }
-                          }
-#endif
-                          if (!summed) {
-                              batch.count = 0;
-                              collectNeighbors(from[0], s.px[k], s.py[k], s.pz[k], s.vx[k],
-                                               s.vy[k], s.vz[k], s.radius[k], reach2, batch);
-                              sumBatch<M, N>(pair, batch, fx, fy, fz);
-                          }
+                          batch.count = 0;
+                          collectNeighbors(from[0], s.px[k], s.py[k], s.pz[k], s.vx[k],
+                                           s.vy[k], s.vz[k], s.radius[k], reach2, batch);
+                          sumBatch<M, N>(pair, batch, fx, fy, fz);
                           forces.x[k] = fx;
                           forces.y[k] = fy;
                           forces.z[k] = fz;
@@ -229,6 +93,24 @@ void sumRange(const PairForce& pair, const NeighborGrid& grid, const Globules& s
         first = group.last;
     }
 }
+
+#if defined(__AVX512F__)
+/// sumEachPairOnce for one material.
+template <int M, int N>
+void sumPairsOnce(const PairForce& pair, const NeighborGrid& grid, const CellSchedule& schedule,
+                  const Globules& s, Accelerations& forces) {
+    const float reach = pair.cutoff(1.0f), reach2 = reach * reach;
+    sumEachPairOnce(grid, schedule, s, 1, false, forces,
+                    [&](LaterPairsScratch& w, const std::vector<GroupCandidates>& lists,
+                        uint32_t k, std::vector<Reactions>& reactions) {
+                        float fx = 0, fy = 0, fz = 0;
+                        const CandidateLanes lanes(lists[0], memberAt(s, k), reach2);
+                        sumLaterCandidates<M, N>(pair, lanes, w.later[0], reactions[0].lanes(),
+                                                 fx, fy, fz);
+                        addForce(forces, k, fx, fy, fz);
+                    });
+}
+#endif
 
 using SumRange = void (*)(const PairForce&, const NeighborGrid&, const Globules&, bool,
                           std::size_t, std::size_t, Accelerations&);
@@ -265,8 +147,27 @@ void sortingOne(Globules& g, const PairForce& pair, NeighborWorkspace& w, Accele
     // The accelerations are about to be overwritten: their array is the reorder's scratch
     // (no extra 4 bytes per globule).
     g.permute(w.grid.sortedOrder(), forces.x);
-    const SumRange sum = kernelFor(pair);
     const bool uniformRadius = smallest == largest;
+#if defined(__AVX512F__)
+    if (uniformRadius && pair.integerExponents) {
+        using SumOnce = void (*)(const PairForce&, const NeighborGrid&, const CellSchedule&,
+                                 const Globules&, Accelerations&);
+        const auto once = forExponents(pair, []<int M, int N>() {
+            if constexpr (M > 0 && N > 0) {
+                return SumOnce(sumPairsOnce<M, N>);
+            } else {
+                return SumOnce(nullptr);
+            }
+        });
+        if (once) {
+            w.schedule.build(w.grid, g.px.data(), g.py.data(), g.pz.data(), n);
+            zeroForces(forces, false);
+            once(pair, w.grid, w.schedule, g, forces);
+            return;
+        }
+    }
+#endif
+    const SumRange sum = kernelFor(pair);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, w.grain),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                           const auto [begin, end] = wholeCells(w.grid, g, r.begin(), r.end());
@@ -279,6 +180,9 @@ using SumBatch = void (*)(const PairForce&, const NeighborBatch&, float&, float&
 #if defined(__AVX512F__)
 /// The same straight over a member's candidates (CandidateLanes).
 using SumCandidates = void (*)(const PairForce&, const CandidateLanes&, float&, float&, float&);
+/// The same over the candidates from a place on, the opposite forces left behind.
+using SumLaterCandidates = void (*)(const PairForce&, const CandidateLanes&, uint32_t,
+                                    ReactionLanes, float&, float&, float&);
 #endif
 
 /// One pair's kernels for sumRangeMixed: over the compacted neighbours and, with AVX-512
@@ -287,16 +191,18 @@ struct MixedKernel {
     SumBatch batch;
 #if defined(__AVX512F__)
     SumCandidates direct = nullptr;
+    SumLaterCandidates later = nullptr;  ///< the same from a place on (sumLaterCandidates)
 #endif
 
     explicit MixedKernel(const PairForce& pair)
         : batch(forExponents(pair, []<int M, int N>() { return SumBatch(sumBatch<M, N>); })) {
 #if defined(__AVX512F__)
-        direct = forExponents(pair, []<int M, int N>() {
+        std::tie(direct, later) = forExponents(pair, []<int M, int N>() {
             if constexpr (M > 0 && N > 0) {
-                return SumCandidates(sumCandidates<M, N>);
+                return std::pair{SumCandidates(sumCandidates<M, N>),
+                                 SumLaterCandidates(sumLaterCandidates<M, N>)};
             } else {
-                return SumCandidates(nullptr);
+                return std::pair{SumCandidates(nullptr), SumLaterCandidates(nullptr)};
             }
         });
 #endif
@@ -374,6 +280,34 @@ void sortingTable(Globules& g, const PairTable& pairs, NeighborWorkspace& w, Acc
         for (std::size_t b = 0; b < pairs.materials(); ++b) kernels.emplace_back(pairs(a, b));
     }
     const bool uniformRadius = smallest == largest;
+#if defined(__AVX512F__)
+    const bool eachPairOnce =
+        uniformRadius && std::all_of(kernels.begin(), kernels.end(),
+                                     [](const MixedKernel& kernel) { return kernel.later; });
+    if (eachPairOnce) {
+        const std::size_t kinds = pairs.materials();
+        w.schedule.build(w.grid, g.px.data(), g.py.data(), g.pz.data(), n);
+        zeroForces(forces, false);
+        sumEachPairOnce(w.grid, w.schedule, g, kinds, false, forces,
+                        [&](LaterPairsScratch& scratch, const std::vector<GroupCandidates>& lists,
+                            uint32_t k, std::vector<Reactions>& reactions) {
+                            const std::size_t mine = g.material[k];
+                            float fx = 0, fy = 0, fz = 0;
+                            for (std::size_t kind = 0; kind < kinds; ++kind) {
+                                if (scratch.later[kind] >= lists[kind].count) continue;
+                                const PairForce& pair = pairs(mine, kind);
+                                const float reach = pair.cutoff(1.0f);
+                                const CandidateLanes lanes(lists[kind], memberAt(g, k),
+                                                           reach * reach);
+                                kernels[mine * kinds + kind].later(pair, lanes, scratch.later[kind],
+                                                                   reactions[kind].lanes(), fx, fy,
+                                                                   fz);
+                            }
+                            addForce(forces, k, fx, fy, fz);
+                        });
+        return;
+    }
+#endif
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, w.grain),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                           const auto [begin, end] = wholeCells(w.grid, g, r.begin(), r.end());
@@ -403,6 +337,13 @@ using SumCandidatesAndHeat = float (*)(const PairForce&, const CandidateLanes&,
 using SumBlendedCandidates = float (*)(const ThermalPair&, const CandidateLanes&,
                                        const GroupCandidates&, float, float, float&, float&,
                                        float&);
+/// The same over the candidates from a place on, the opposite forces and heat left behind.
+using SumLaterAndHeat = float (*)(const PairForce&, const CandidateLanes&,
+                                  const GroupCandidates&, float, float, float&, float&, float&,
+                                  uint32_t, ReactionLanes, float);
+using SumLaterBlended = float (*)(const ThermalPair&, const CandidateLanes&,
+                                  const GroupCandidates&, float, float, float&, float&, float&,
+                                  uint32_t, ReactionLanes, float);
 #endif
 
 /// What the thermal loop runs for one pair of materials in each phase.
@@ -417,6 +358,8 @@ struct ThermalKernel {
     /// lanes; null otherwise.
     SumCandidatesAndHeat pureDirect = nullptr;
     SumBlendedCandidates blendedDirect = nullptr;
+    SumLaterAndHeat pureLater = nullptr;  ///< the same from a place on (each pair once)
+    SumLaterBlended blendedLater = nullptr;
 #endif
 
     /// The three kernels share their arithmetic, so that where a pure phase holds the
@@ -446,6 +389,15 @@ struct ThermalKernel {
                 }
             };
             std::tie(pureDirect, blendedDirect) = forExponents(p.solid, direct);
+            const auto later = []<int M, int N>() {
+                if constexpr (M > 0 && N > 0) {
+                    return std::pair{SumLaterAndHeat(sumLaterCandidatesAndHeat<M, N>),
+                                     SumLaterBlended(sumLaterBlendedCandidates<M, N>)};
+                } else {
+                    return std::pair{SumLaterAndHeat(nullptr), SumLaterBlended(nullptr)};
+                }
+            };
+            std::tie(pureLater, blendedLater) = forExponents(p.solid, later);
 #endif
         }
     }
@@ -558,6 +510,47 @@ void thermal(Globules& g, const PairTable& pairs, NeighborWorkspace& w, Accelera
         for (std::size_t b = 0; b < kinds; ++b) kernels.emplace_back(pairs.thermal(a, b));
     }
     const bool uniformRadius = smallest == largest;
+#if defined(__AVX512F__)
+    const bool eachPairOnce =
+        uniformRadius && std::all_of(kernels.begin(), kernels.end(),
+                                     [](const ThermalKernel& kernel) { return kernel.pureLater; });
+    if (eachPairOnce) {
+        w.schedule.build(w.grid, g.px.data(), g.py.data(), g.pz.data(), n);
+        zeroForces(forces, true);
+        sumEachPairOnce(
+            w.grid, w.schedule, g, kinds, true, forces,
+            [&](LaterPairsScratch& scratch, const std::vector<GroupCandidates>& lists, uint32_t k,
+                std::vector<Reactions>& reactions) {
+                const std::size_t mine = g.materialOf(k);
+                const float t = g.temperature[k];
+                float fx = 0, fy = 0, fz = 0, heat = 0;
+                for (std::size_t kind = 0; kind < kinds; ++kind) {
+                    const uint32_t from = scratch.later[kind];
+                    if (from >= lists[kind].count) continue;
+                    const ThermalKernel& kernel = kernels[mine * kinds + kind];
+                    const auto [lowest, highest] = scratch.ranges[kind];
+                    const ThermalPhase phase = phaseOf(kernel.pair, t, lowest, highest);
+                    const CandidateLanes lanes(lists[kind], memberAt(g, k), kernel.reach2);
+                    const float conductance = kernel.pair.conductance;
+                    float in;
+                    if (phase == ThermalPhase::Blend) {
+                        in = kernel.blendedLater(kernel.pair, lanes, lists[kind], t, kernel.reach2,
+                                                 fx, fy, fz, from, reactions[kind].lanes(),
+                                                 conductance);
+                    } else {
+                        const PairForce& p =
+                            phase == ThermalPhase::Solid ? kernel.pair.solid : kernel.pair.liquid;
+                        in = kernel.pureLater(p, lanes, lists[kind], t, kernel.reach2, fx, fy, fz,
+                                              from, reactions[kind].lanes(), conductance);
+                    }
+                    heat += conductance * in;
+                }
+                addForce(forces, k, fx, fy, fz);
+                forces.heat[k] += heat;
+            });
+        return;
+    }
+#endif
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, w.grain),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                           const auto [begin, end] = wholeCells(w.grid, g, r.begin(), r.end());

@@ -7,6 +7,7 @@
 // of an inline function into the scalar path, or the reverse.
 
 #include "accelerations.h"
+#include "cell_schedule.h"
 #include "globules.h"
 #include "material_pairs.h"
 #include "neighbor_grid.h"
@@ -18,6 +19,7 @@ namespace globular {
 /// What the grid force loop keeps between steps.
 struct NeighborWorkspace {
     NeighborGrid grid;
+    CellSchedule schedule;  ///< where the loop evaluates each pair once (force_kernels.cpp)
     float largestRadius = 0;  ///< of the globules the grid was last built over
     /// Globules per task at least. A task's range may cut a grid cell's group anywhere;
     /// tests shrink it to cut groups at other places, which must not change a bit.

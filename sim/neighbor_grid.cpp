@@ -90,6 +90,7 @@ void NeighborGrid::build(const float* px, const float* py, const float* pz, std:
     // Within a bucket, order by x cell (ties by index: deterministic). Buckets are
     // independent: sorted in parallel.
     mSortedCellX.resize(n);
+    mSeveralRows.assign(buckets, 0);
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, buckets, 2048),
                       [&](const tbb::blocked_range<uint32_t>& range) {
                           std::vector<std::pair<int32_t, uint32_t>> keyed;
@@ -97,9 +98,16 @@ void NeighborGrid::build(const float* px, const float* py, const float* pz, std:
                               const uint32_t begin = mBucketStart[b], end = mBucketStart[b + 1];
                               if (begin == end) continue;
                               keyed.clear();
+                              const uint32_t head = mSorted[begin];
+                              const int32_t rowY = cellCoord(py[head]), rowZ = cellCoord(pz[head]);
+                              bool severalRows = false;
                               for (uint32_t k = begin; k < end; ++k) {
-                                  keyed.emplace_back(cellCoordX(px[mSorted[k]]), mSorted[k]);
+                                  const uint32_t i = mSorted[k];
+                                  keyed.emplace_back(cellCoordX(px[i]), i);
+                                  severalRows |=
+                                      cellCoord(py[i]) != rowY || cellCoord(pz[i]) != rowZ;
                               }
+                              mSeveralRows[b] = severalRows;
                               sortNearlySorted(keyed);
                               for (uint32_t k = begin; k < end; ++k) {
                                   mSortedCellX[k] = keyed[k - begin].first;

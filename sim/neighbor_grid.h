@@ -62,6 +62,32 @@ public:
         }
     }
 
+    /// Calls visit(first, last, bucket) for the run [first, last) of sortedOrder() of each
+    /// cell's points, in grid order: a maximal run of points that share a cell (cellOf).
+    /// @p py, @p pz: the points' y and z in grid order (for the rare bucket whose points
+    /// lie in several rows of cells). @p bucket: the hashed row's, which no other row of
+    /// cells shares unless their points interleave in it.
+    template <typename Visit>
+    void forEachCellRun(const float* py, const float* pz, Visit&& visit) const {
+        const int32_t* cellX = mSortedCellX.data();
+        for (uint32_t b = 0; b + 1 < mBucketStart.size(); ++b) {
+            const uint32_t begin = mBucketStart[b], end = mBucketStart[b + 1];
+            if (begin == end) continue;
+            uint32_t first = begin;
+            for (uint32_t k = begin + 1; k < end; ++k) {
+                const bool newCell =
+                    cellX[k] != cellX[k - 1] ||
+                    (mSeveralRows[b] && (cellCoord(py[k]) != cellCoord(py[k - 1]) ||
+                                         cellCoord(pz[k]) != cellCoord(pz[k - 1])));
+                if (newCell) {
+                    visit(first, k, b);
+                    first = k;
+                }
+            }
+            visit(first, end, b);
+        }
+    }
+
     /// Integer coordinates of the cell holding (x, y, z).
     std::array<int32_t, 3> cellOf(float x, float y, float z) const {
         return {cellCoordX(x), cellCoord(y), cellCoord(z)};
@@ -89,6 +115,7 @@ private:
     std::vector<uint32_t> mBucketStart;  ///< size buckets + 1
     std::vector<uint32_t> mSorted;       ///< point indices grouped by bucket, then x cell
     std::vector<int32_t> mSortedCellX;   ///< x sub-cell (cellCoordX) of each sorted point
+    std::vector<uint8_t> mSeveralRows;   ///< per bucket: its points lie in several rows
 };
 
 }  // namespace globular

@@ -18,6 +18,7 @@
 // same neighbours in the same order.
 // The arithmetic is PairForce::accumulate's, to single-precision rounding.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -34,6 +35,9 @@ namespace globular {
 struct GlobuleArrays {
     const float *x, *y, *z, *vx, *vy, *vz, *radius;
     const float* temperature = nullptr;
+    /// Each entry's globule, where the arrays are a copy (GroupCandidates); null: entry j
+    /// is globule j.
+    const uint32_t* index = nullptr;
 };
 
 /// One globule's neighbours within reach: P = x_i - x_j, V.P with V = v_i - v_j (all the
@@ -61,8 +65,27 @@ struct GroupCandidates {
     static constexpr uint32_t kPadding = 16;  ///< vector stores write up to 16 past count
     std::vector<float> x, y, z, vx, vy, vz, radius;
     bool uniformRadius = false;  ///< all globules share one radius: `radius` is not kept
+    /// Each candidate's globule is kept in `index` (the loop that evaluates each pair once
+    /// adds the opposite force to it, force_kernels.cpp).
+    bool indexed = false;
     uint32_t count = 0;
     std::vector<float> temperature;  ///< thermal scenes (GlobuleArrays::temperature)
+    std::vector<uint32_t> index;
+    /// With `indexed`, on the AVX-512 path: where the entries came from, block by block:
+    /// the places [at, at + 16) of the source arrays, and which of them were kept. The
+    /// opposite forces go back the same way (force_kernels.cpp, addBack).
+    struct Source {
+        uint32_t at;
+        uint16_t kept;
+    };
+    std::vector<Source> sources;
+    uint32_t sourceCount = 0;
+
+    /// No entries.
+    void clear() {
+        count = 0;
+        sourceCount = 0;
+    }
 
     /// Room for @p candidates entries.
     void reserve(std::size_t candidates) {
@@ -70,6 +93,8 @@ struct GroupCandidates {
         for (auto* a : {&x, &y, &z, &vx, &vy, &vz, &radius, &temperature}) {
             a->resize(candidates + kPadding);
         }
+        index.resize(candidates + kPadding);
+        sources.resize(candidates + 1);  // each kept block keeps one entry at least
     }
 };
 
@@ -109,6 +134,14 @@ inline __mmask16 materialMask(const uint8_t* material, uint32_t left, uint8_t wa
     for (uint32_t l = 0; l < 16 && l < left; ++l) mask |= __mmask16(material[l] == want) << l;
     return mask;
 #endif
+}
+
+/// The globules of entries [j, j + 16) of @p s (GlobuleArrays::index), in the lanes of
+/// @p live.
+inline __m512i indicesAt(const GlobuleArrays& s, uint32_t j, __mmask16 live) {
+    if (s.index) return _mm512_maskz_loadu_epi32(live, s.index + j);
+    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    return _mm512_add_epi32(_mm512_set1_epi32(int(j)), lane);
 }
 #elif defined(__AVX2__)
 /// nearBox for eight globules: their positions, and which of the first @p left lie within
@@ -154,6 +187,14 @@ inline unsigned materialMask8(const uint8_t* material, uint32_t left, uint8_t wa
     const unsigned lanes = left >= 8 ? 0xFFu : (1u << left) - 1;
     return unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(same))) & lanes;
 }
+
+/// Stores at @p to, in order, the globules of those entries [j, j + 8) of @p s
+/// (GlobuleArrays::index) set in @p keep (a movemask).
+inline void keepIndices(const GlobuleArrays& s, uint32_t j, unsigned keep, uint32_t* to) {
+    for (uint32_t lane = 0; keep; ++lane, keep >>= 1) {
+        if (keep & 1u) *to++ = s.index ? s.index[j + lane] : j + lane;
+    }
+}
 #endif
 
 /// Appends to @p out the globules j in [begin, end) of @p s within @p reach of the box
@@ -166,29 +207,43 @@ inline void collectGroupCandidates(const GlobuleArrays& s, uint32_t begin, uint3
     uint32_t count = out.count;
     const float reach2 = reach * reach;
 #if defined(__AVX512F__)
+    // Locals, not members: the vector stores below may alias anything, so members would
+    // be reloaded on every pass.
+    const GlobuleArrays from = s;
+    float *ox = out.x.data(), *oy = out.y.data(), *oz = out.z.data();
+    float *ovx = out.vx.data(), *ovy = out.vy.data(), *ovz = out.vz.data();
+    float *oradius = out.uniformRadius ? nullptr : out.radius.data();
+    float* otemperature = from.temperature ? out.temperature.data() : nullptr;
+    uint32_t* oindex = out.indexed ? out.index.data() : nullptr;
+    GroupCandidates::Source* source = out.sources.data() + out.sourceCount;
     const __m512 reach2v = _mm512_set1_ps(reach2);
     for (uint32_t j = begin; j < end; j += 16) {
         const uint32_t left = end - j;
-        const NearBox box = nearBox(s, j, left, lo, hi, reach2v);
-        const __m512 x = box.x, y = box.y, z = box.z;
+        const NearBox box = nearBox(from, j, left, lo, hi, reach2v);
         __mmask16 near = box.near;
         if (material) near &= materialMask(material + j, left, want);
-        const auto keep = [&](std::vector<float>& to, __m512 v) {
-            _mm512_storeu_ps(to.data() + count, _mm512_maskz_compress_ps(near, v));
+        const auto keep = [&](float* to, __m512 v) {
+            _mm512_storeu_ps(to + count, _mm512_maskz_compress_ps(near, v));
         };
-        const auto keepFrom = [&](std::vector<float>& to, const float* from) {
-            keep(to, _mm512_maskz_loadu_ps(near, from + j));
+        const auto keepFrom = [&](float* to, const float* values) {
+            keep(to, _mm512_maskz_loadu_ps(near, values + j));
         };
-        keep(out.x, x);
-        keep(out.y, y);
-        keep(out.z, z);
-        keepFrom(out.vx, s.vx);
-        keepFrom(out.vy, s.vy);
-        keepFrom(out.vz, s.vz);
-        if (!out.uniformRadius) keepFrom(out.radius, s.radius);
-        if (s.temperature) keepFrom(out.temperature, s.temperature);
+        keep(ox, box.x);
+        keep(oy, box.y);
+        keep(oz, box.z);
+        keepFrom(ovx, from.vx);
+        keepFrom(ovy, from.vy);
+        keepFrom(ovz, from.vz);
+        if (oradius) keepFrom(oradius, from.radius);
+        if (otemperature) keepFrom(otemperature, from.temperature);
+        if (oindex && near) {
+            _mm512_storeu_si512(oindex + count,
+                                _mm512_maskz_compress_epi32(near, indicesAt(from, j, near)));
+            *source++ = {j, near};
+        }
         count += uint32_t(__builtin_popcount(near));
     }
+    out.sourceCount = uint32_t(source - out.sources.data());
 #elif defined(__AVX2__)
     const __m256 reach2v = _mm256_set1_ps(reach2);
     for (uint32_t j = begin; j < end; j += 8) {
@@ -207,6 +262,7 @@ inline void collectGroupCandidates(const GlobuleArrays& s, uint32_t begin, uint3
         keep(out.vz, box.load(s.vz));
         if (!out.uniformRadius) keep(out.radius, box.load(s.radius));
         if (s.temperature) keep(out.temperature, box.load(s.temperature));
+        if (out.indexed) keepIndices(s, j, near, out.index.data() + count);
         count += uint32_t(__builtin_popcount(near));
     }
 #else
@@ -225,6 +281,7 @@ inline void collectGroupCandidates(const GlobuleArrays& s, uint32_t begin, uint3
         out.vz[count] = s.vz[j];
         out.radius[count] = s.radius[j];
         if (s.temperature) out.temperature[count] = s.temperature[j];
+        if (out.indexed) out.index[count] = s.index ? s.index[j] : j;
         count += d2 <= reach2 && (!material || material[j] == want);
     }
 #endif
@@ -265,6 +322,11 @@ inline void collectGroupCandidatesByMaterial(const GlobuleArrays& s, uint32_t be
             keep(c.vz, vz);
             if (!c.uniformRadius) keep(c.radius, r);
             if (s.temperature) keep(c.temperature, t);
+            if (c.indexed) {
+                _mm512_storeu_si512(c.index.data() + c.count,
+                                    _mm512_maskz_compress_epi32(mine, indicesAt(s, j, mine)));
+                c.sources[c.sourceCount++] = {j, mine};
+            }
             c.count += uint32_t(__builtin_popcount(mine));
         }
     }
@@ -293,6 +355,7 @@ inline void collectGroupCandidatesByMaterial(const GlobuleArrays& s, uint32_t be
             keep(c.vz, vz);
             if (!c.uniformRadius) keep(c.radius, r);
             if (s.temperature) keep(c.temperature, t);
+            if (c.indexed) keepIndices(s, j, mine, c.index.data() + c.count);
             c.count += uint32_t(__builtin_popcount(mine));
         }
     }
@@ -662,6 +725,11 @@ struct Member {
 };
 
 #if defined(__AVX512F__)
+/// The first block of 16 of a sum over candidates from @p from on: blocks start at
+/// multiples of 16, the lanes before @p from masked off (CandidateLanes::load), so that
+/// loads and stores do not straddle cache lines.
+inline uint32_t firstBlock(uint32_t from) { return from & ~15u; }
+
 /// One member's candidates (GroupCandidates, every globule of the member's radius: the
 /// list's uniformRadius), 16 at a time, for the AVX-512 sums that run straight over them:
 /// each block's P, |P|^2 and V.P, and which lanes are neighbours (0 < |P| < reach (r + r),
@@ -693,11 +761,12 @@ public:
 
     uint32_t count() const { return mCount; }
 
-    /// Candidates [j, j + 16). The padding past count is readable: plain loads, and a
-    /// masked test.
-    Block load(uint32_t j) const {
+    /// Candidates [j, j + 16), those before @p from left out. The padding past count is
+    /// readable: plain loads, and a masked test. Always inlined: a call returns the block
+    /// through memory (GCC 12 left it out of line in the thermal loops, 1.4x slower).
+    [[gnu::always_inline]] Block load(uint32_t j, uint32_t from = 0) const {
         Block b;
-        const __mmask16 live = firstLanes(mCount - j);
+        const __mmask16 live = firstLanes(mCount - j) & ~firstLanes(from > j ? from - j : 0);
         b.dx = _mm512_sub_ps(mPx, _mm512_loadu_ps(mX + j));
         b.dy = _mm512_sub_ps(mPy, _mm512_loadu_ps(mY + j));
         b.dz = _mm512_sub_ps(mPz, _mm512_loadu_ps(mZ + j));
@@ -720,22 +789,80 @@ private:
     __m512 mPx, mPy, mPz, mPvx, mPvy, mPvz, mLimit;
 };
 
+/// Where a member's sum over the candidates after it (the loop that evaluates each pair
+/// once) leaves each pair's opposite force and heat: one entry per candidate, plain
+/// pointers into Reactions' arrays, so that the vector stores (which may alias anything)
+/// do not make the loop reload them.
+struct ReactionLanes {
+    float *x, *y, *z, *heat;
+
+    /// Takes -@p scale P of the lanes @p near of block [j, j + 16).
+    void add(uint32_t j, __mmask16 near, __m512 scale, __m512 dx, __m512 dy, __m512 dz) const {
+        const auto take = [&](float* to, __m512 p) {
+            float* at = to + j;
+            _mm512_storeu_ps(at, _mm512_mask3_fnmadd_ps(scale, p, _mm512_loadu_ps(at), near));
+        };
+        take(x, dx);
+        take(y, dy);
+        take(z, dz);
+    }
+
+    /// Takes -@p conductance @p term of the lanes @p near of block [j, j + 16): the
+    /// opposite of the heat the member took in (HeatLanes).
+    void addHeat(uint32_t j, __mmask16 near, __m512 term, float conductance) const {
+        float* at = heat + j;
+        _mm512_storeu_ps(at, _mm512_mask3_fnmadd_ps(_mm512_set1_ps(conductance), term,
+                                                    _mm512_loadu_ps(at), near));
+    }
+};
+
+/// The opposite of the forces a list's members feel from its candidates (Newton's third
+/// law), one entry per candidate: the loop that evaluates each pair once sums a member's
+/// force over the candidates after it and leaves each pair's opposite here (ReactionLanes),
+/// to be added to the candidate's globule once the list is done (each_pair_once.h).
+/// Thermal scenes keep the opposite heat too.
+struct Reactions {
+    static constexpr uint32_t kPadding = 16;  ///< vector stores write up to 16 past count
+    std::vector<float> x, y, z, heat;
+
+    /// @p count zeroed entries (and the padding); @p withHeat: the heat's too.
+    void clear(uint32_t count, bool withHeat) {
+        for (auto* a : {&x, &y, &z, &heat}) {
+            if (a == &heat && !withHeat) continue;
+            if (a->size() < count + kPadding) a->resize(count + kPadding);
+            std::fill(a->begin(), a->begin() + count + kPadding, 0.0f);
+        }
+    }
+
+    ReactionLanes lanes() { return {x.data(), y.data(), z.data(), heat.data()}; }
+};
+
+/// Where a sum that evaluates each pair from both sides puts the opposite forces: nowhere.
+struct NoReactions {
+    void add(uint32_t, __mmask16, __m512, __m512, __m512, __m512) const {}
+    void addHeat(uint32_t, __mmask16, __m512, float) const {}
+};
+
 /// Adds to (fx, fy, fz) the force of eq. (2) from every neighbour among @p lanes'
-/// candidates, and calls @p perBlock(j, near, d2) for each block [j, j + 16) (the heat,
-/// thermal_kernel.h). <M, N>: integer exponents (the pow() kernels compact first).
-template <int M, int N, typename PerBlock>
-inline void sumCandidatesWith(const PairForce& p, const CandidateLanes& lanes, float& fx,
-                              float& fy, float& fz, PerBlock&& perBlock) {
+/// candidates [@p from, count), calls @p perBlock(j, near, d2) for each block [j, j + 16)
+/// (the heat, thermal_kernel.h) and leaves each pair's opposite force in @p reactions.
+/// <M, N>: integer exponents (the pow() kernels compact first).
+template <int M, int N, typename PerBlock, typename Opposite>
+inline void sumCandidatesWith(const PairForce& p, const CandidateLanes& candidates, float& fx,
+                              float& fy, float& fz, PerBlock&& perBlock, uint32_t from,
+                              Opposite reactions) {
+    const CandidateLanes lanes = candidates;  // a local: the stores cannot alias it
     static_assert(M > 0 && N > 0, "integer exponents: the pow() kernels compact first");
     const __m512 cr2 = _mm512_set1_ps(1.0f / (p.cr * p.cr));
     const __m512 cd2 = _mm512_set1_ps(1.0f / (p.cd * p.cd));
     const __m512 b1 = _mm512_set1_ps(p.b1), b2 = _mm512_set1_ps(p.b2);
     __m512 ax = _mm512_setzero_ps(), ay = ax, az = ax;
-    for (uint32_t j = 0; j < lanes.count(); j += 16) {
-        const CandidateLanes::Block b = lanes.load(j);
+    for (uint32_t j = firstBlock(from); j < lanes.count(); j += 16) {
+        const CandidateLanes::Block b = lanes.load(j, from);
         const __m512 scale =
             pairScale<M, N>(b.d2, lanes.invSum2, lanes.minD2, b1, b2, cr2, cd2, b.vDotP);
         perBlock(j, b.near, b.d2);
+        reactions.add(j, b.near, scale, b.dx, b.dy, b.dz);
         ax = _mm512_mask3_fmadd_ps(scale, b.dx, ax, b.near);
         ay = _mm512_mask3_fmadd_ps(scale, b.dy, ay, b.near);
         az = _mm512_mask3_fmadd_ps(scale, b.dz, az, b.near);
@@ -758,7 +885,15 @@ struct NoBlockWork {
 template <int M, int N>
 inline void sumCandidates(const PairForce& p, const CandidateLanes& lanes, float& fx, float& fy,
                           float& fz) {
-    sumCandidatesWith<M, N>(p, lanes, fx, fy, fz, NoBlockWork{});
+    sumCandidatesWith<M, N>(p, lanes, fx, fy, fz, NoBlockWork{}, 0, NoReactions{});
+}
+
+/// sumCandidatesWith over the candidates [@p from, count), each pair's opposite force left
+/// in @p reactions.
+template <int M, int N>
+inline void sumLaterCandidates(const PairForce& p, const CandidateLanes& lanes, uint32_t from,
+                               ReactionLanes reactions, float& fx, float& fy, float& fz) {
+    sumCandidatesWith<M, N>(p, lanes, fx, fy, fz, NoBlockWork{}, from, reactions);
 }
 #endif
 

@@ -123,8 +123,9 @@ private:
 public:
 
 #if defined(__AVX512F__)
-    /// Adds the terms of the live lanes of [k, k + 16), whose |P|^2 is @p d2.
-    void add(uint32_t k, __mmask16 live, __m512 d2) {
+    /// Adds the terms of the live lanes of [k, k + 16), whose |P|^2 is @p d2. @return the
+    /// terms, w (T_j - T_i) (the opposite heat of a loop that evaluates each pair once).
+    __m512 add(uint32_t k, __mmask16 live, __m512 d2) {
         const __m512 one = _mm512_set1_ps(1);
         __m512 invLimit = mUniformInvLimit;
         if (!mUniform) {
@@ -135,6 +136,7 @@ public:
         const __m512 tj = _mm512_maskz_loadu_ps(live, mTemperatures + k);
         const __m512 difference = _mm512_sub_ps(tj, mTi);
         mHeat = _mm512_mask3_fmadd_ps(w, difference, mHeat, live);
+        return _mm512_mul_ps(w, difference);
     }
     float total() const { return _mm512_reduce_add_ps(mHeat); }
 #elif defined(__AVX2__)
@@ -265,34 +267,43 @@ private:
     Constants mSolid, mLiquid;
 };
 
-/// sumBatchAndHeat straight over a member's candidates (CandidateLanes), which carry their
-/// temperatures; the heat in the same blocks.
-template <int M, int N>
-inline float sumCandidatesAndHeat(const PairForce& p, const CandidateLanes& lanes,
-                                  const GroupCandidates& c, float ti, float reach2, float& fx,
-                                  float& fy, float& fz) {
+/// sumBatchAndHeat straight over a member's candidates (CandidateLanes) [@p from, count),
+/// which carry their temperatures; the heat in the same blocks. Each pair's opposite force
+/// and heat (@p conductance times the heat's term) go to @p reactions (NoReactions: none).
+template <int M, int N, typename Opposite>
+inline float candidatesAndHeat(const PairForce& p, const CandidateLanes& lanes,
+                               const GroupCandidates& c, float ti, float reach2, float& fx,
+                               float& fy, float& fz, uint32_t from, Opposite reactions,
+                               float conductance) {
     HeatLanes heat(c, lanes.radiusSum, ti, reach2);
-    sumCandidatesWith<M, N>(p, lanes, fx, fy, fz,
-                            [&](uint32_t j, __mmask16 near, __m512 d2) { heat.add(j, near, d2); });
+    sumCandidatesWith<M, N>(
+        p, lanes, fx, fy, fz,
+        [&](uint32_t j, __mmask16 near, __m512 d2) {
+            reactions.addHeat(j, near, heat.add(j, near, d2), conductance);
+        },
+        from, reactions);
     return heat.total();
 }
 
 /// sumBlendedBatch straight over a member's candidates: the same blocks and heat lanes as
-/// sumCandidatesAndHeat, so that where a pure phase holds the two give the same bits.
-template <int M, int N>
-inline float sumBlendedCandidates(const ThermalPair& pair, const CandidateLanes& lanes,
-                                  const GroupCandidates& c, float ti, float reach2, float& fx,
-                                  float& fy, float& fz) {
+/// candidatesAndHeat, so that where a pure phase holds the two give the same bits.
+template <int M, int N, typename Opposite>
+inline float blendedCandidates(const ThermalPair& pair, const CandidateLanes& candidates,
+                               const GroupCandidates& c, float ti, float reach2, float& fx,
+                               float& fy, float& fz, uint32_t from, Opposite reactions,
+                               float conductance) {
+    const CandidateLanes lanes = candidates;  // a local: the stores cannot alias it
     const BlendLanes blend(pair, ti);
     HeatLanes heat(c, lanes.radiusSum, ti, reach2);
     const float* ct = c.temperature.data();
     __m512 ax = _mm512_setzero_ps(), ay = ax, az = ax;
-    for (uint32_t j = 0; j < lanes.count(); j += 16) {
-        const CandidateLanes::Block b = lanes.load(j);
+    for (uint32_t j = firstBlock(from); j < lanes.count(); j += 16) {
+        const CandidateLanes::Block b = lanes.load(j, from);
         const BlendLanes::Constants k = blend.at(_mm512_loadu_ps(ct + j));
         const __m512 scale = pairScale<M, N>(b.d2, lanes.invSum2, lanes.minD2, k.b1, k.b2,
                                              k.cr2, k.cd2, b.vDotP);
-        heat.add(j, b.near, b.d2);
+        reactions.addHeat(j, b.near, heat.add(j, b.near, b.d2), conductance);
+        reactions.add(j, b.near, scale, b.dx, b.dy, b.dz);
         ax = _mm512_mask3_fmadd_ps(scale, b.dx, ax, b.near);
         ay = _mm512_mask3_fmadd_ps(scale, b.dy, ay, b.near);
         az = _mm512_mask3_fmadd_ps(scale, b.dz, az, b.near);
@@ -301,6 +312,44 @@ inline float sumBlendedCandidates(const ThermalPair& pair, const CandidateLanes&
     fy += _mm512_reduce_add_ps(ay);
     fz += _mm512_reduce_add_ps(az);
     return heat.total();
+}
+
+/// candidatesAndHeat over all of a member's candidates, every pair from both sides.
+template <int M, int N>
+inline float sumCandidatesAndHeat(const PairForce& p, const CandidateLanes& lanes,
+                                  const GroupCandidates& c, float ti, float reach2, float& fx,
+                                  float& fy, float& fz) {
+    return candidatesAndHeat<M, N>(p, lanes, c, ti, reach2, fx, fy, fz, 0, NoReactions{}, 0.0f);
+}
+
+/// blendedCandidates over all of a member's candidates, every pair from both sides.
+template <int M, int N>
+inline float sumBlendedCandidates(const ThermalPair& pair, const CandidateLanes& lanes,
+                                  const GroupCandidates& c, float ti, float reach2, float& fx,
+                                  float& fy, float& fz) {
+    return blendedCandidates<M, N>(pair, lanes, c, ti, reach2, fx, fy, fz, 0, NoReactions{},
+                                   0.0f);
+}
+
+/// candidatesAndHeat over the candidates from @p from on, for the loop that evaluates
+/// each pair once: the opposite forces and heat left in @p reactions.
+template <int M, int N>
+inline float sumLaterCandidatesAndHeat(const PairForce& p, const CandidateLanes& lanes,
+                                       const GroupCandidates& c, float ti, float reach2,
+                                       float& fx, float& fy, float& fz, uint32_t from,
+                                       ReactionLanes reactions, float conductance) {
+    return candidatesAndHeat<M, N>(p, lanes, c, ti, reach2, fx, fy, fz, from, reactions,
+                                   conductance);
+}
+
+/// blendedCandidates from @p from on, the opposite forces and heat left in @p reactions.
+template <int M, int N>
+inline float sumLaterBlendedCandidates(const ThermalPair& pair, const CandidateLanes& lanes,
+                                       const GroupCandidates& c, float ti, float reach2,
+                                       float& fx, float& fy, float& fz, uint32_t from,
+                                       ReactionLanes reactions, float conductance) {
+    return blendedCandidates<M, N>(pair, lanes, c, ti, reach2, fx, fy, fz, from, reactions,
+                                   conductance);
 }
 #endif
 

@@ -9,6 +9,7 @@ globular_test(physics_test
 globular_test(mesh_sdf_test SOURCES mesh_sdf_test.cpp LIBS globular_sim)
 globular_test(thermal_test SOURCES thermal_test.cpp LIBS globular_sim)
 globular_test(simd_path_test SOURCES simd_path_test.cpp LIBS globular_sim)
+globular_test(cell_schedule_test SOURCES cell_schedule_test.cpp LIBS globular_sim)
 globular_test(left_pack_test SOURCES left_pack_test.cpp left_pack_probe.cpp LIBS globular_sim)
 set_source_files_properties(left_pack_probe.cpp PROPERTIES COMPILE_OPTIONS "-mavx2;-mfma")
 target_include_directories(left_pack_test PRIVATE ${PROJECT_SOURCE_DIR}/sim)
