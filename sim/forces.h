@@ -1,8 +1,12 @@
 #pragma once
 // Accelerations of every globule: the pair force of eq. (2) summed over neighbours,
-// plus gravity and the ground penalty of eq. (9). Forces are gathered per globule (each
-// pair is evaluated from both sides) so loops write only their own index: no locks, no
-// atomics, and the same sum order, hence bit-identical results, for any thread count.
+// plus gravity and the ground penalty of eq. (9). With AVX-512, one radius for every
+// globule and integer exponents, each pair is evaluated once and its opposite force added
+// to the other globule (Newton's third law, each_pair_once.h), rows of cells coloured so
+// that no two threads write one globule (cell_schedule.h). Elsewhere forces are gathered
+// per globule, each pair evaluated from both sides, so loops write only their own index.
+// Either way: no locks, no atomics, and a sum order that follows the positions alone,
+// hence bit-identical results for any thread count.
 // The globules themselves are kept in neighbour-grid order (re-sorted every step) rather
 // than copied into it: no second copy of the state (issue 7's memory budget).
 

@@ -9,7 +9,8 @@
 // With AVX-512, integer exponents and a uniform radius, passes 2 and 3 are one
 // (CandidateLanes, sumCandidatesWith): the force summed over the candidates, the lanes
 // that are no neighbours masked out; there the compaction cost more than the force on
-// those lanes.
+// those lanes. There each pair is also evaluated once: a member sums over the candidates
+// after it in grid order and leaves the opposite forces in Reactions (each_pair_once.h).
 // The grid hands about five candidates for each one within reach, so testing them cheaply
 // and evaluating the force only for the rest is what makes the loop fast. With AVX-512
 // the passes use 16 lanes (compress for the compaction, rsqrt14 + one Newton step for

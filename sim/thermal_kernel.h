@@ -13,9 +13,12 @@
 //     same lanes, as the plain loop does (pair_kernel.h, CandidateLanes).
 // The blend is of what the kernel uses, b1, b2, 1/C_r^2 and 1/C_d^2 (and m, n on the
 // generic path), as (1 - s) solid + s liquid: exactly the solid's at s = 0 and exactly
-// the liquid's at s = 1, so the three ways agree bit for bit where they overlap, and
-// every pair is still evaluated from both sides with the same arithmetic: the force
-// stays equal and opposite.
+// the liquid's at s = 1, so the three ways agree bit for bit where they overlap. Where
+// every pair is evaluated from both sides it is with the same arithmetic, so the force
+// stays equal and opposite; where each pair is evaluated once (AVX-512, a uniform radius:
+// each_pair_once.h) the opposite force and heat are the same lanes negated. The blend's
+// weight follows the pair's mean temperature and the heat's weight d^2 alone: both are
+// the same seen from either globule.
 
 #include <algorithm>
 #include <cmath>
