@@ -23,9 +23,9 @@
 # "Loop time" (setup excluded) and sim_steps's timer around the steps (construction
 # excluded). LAMMPS runs on 1 and 2 MPI ranks (mpirun -np), globular on 1 and 2 threads.
 # globular does more work per pair: the drag (relative velocity along the line of
-# centres, a second window) on top of the radial term, and every pair is evaluated from
-# both sides (gather, for thread-count-independent results) where LAMMPS's half neighbour
-# list (newton on) evaluates it once.
+# centres, a second window) on top of the radial term. Like LAMMPS's half neighbour list
+# (newton on), globular evaluates each pair once with AVX-512 and one radius for every
+# globule (this workload); elsewhere it evaluates every pair from both sides (gather).
 #
 # Environment: LAMMPS_CUTOFF (default 3) to run LAMMPS with another pair cutoff (2 = the
 # radial window only, LAMMPS's cheapest honest setting); TABLE_POINTS (default 4000);
@@ -164,7 +164,7 @@ printf '%-8s %6s %22s %22s %22s %22s %8.2f\n' "$atoms" "$steps" \
     "$(printf '%.4g [%.4g]' "$g1" "$g1cpu")" "$(printf '%.4g [%.4g]' "$g2" "$g2cpu")" \
     "$(awk -v a="$g2" -v b="$l2" 'BEGIN { print a / b }')"
 echo "# ratio = globular 2 threads / LAMMPS np2 (wall). globular also computes the drag"
-echo "# (C_d = 1.5) and evaluates each pair from both sides; LAMMPS here the radial force only."
+echo "# (C_d = 1.5); LAMMPS here the radial force only."
 [[ -n "${checked:-}" ]] &&
     echo "# same forces: LAMMPS's table vs globular's pair force on $checked globules at step 0: max deviation $worst, rms force $rms"
 echo "# LAMMPS loop: np1 ${l1loop} s (${l1pct}% CPU), np2 ${l2loop} s (${l2pct}% CPU per rank);" \
