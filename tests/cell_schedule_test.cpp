@@ -30,6 +30,12 @@ Globules sortedCloud(std::size_t n, double extent, double height, double offset,
     return g;
 }
 
+CellSchedule scheduleOf(const NeighborGrid& grid, const Globules& g) {
+    CellSchedule schedule;
+    schedule.build(grid, g.px.data(), g.py.data(), g.pz.data(), g.size());
+    return schedule;
+}
+
 struct Cloud {
     const char* what;
     std::size_t n;
@@ -48,8 +54,7 @@ TEST(CellSchedule, GroupsAreTheCellsInGridOrder) {
     for (const Cloud& c : kClouds) {
         NeighborGrid grid;
         const Globules g = sortedCloud(c.n, c.extent, c.height, c.offset, 3, 3.0f, grid);
-        CellSchedule schedule;
-        schedule.build(grid, g.px.data(), g.py.data(), g.pz.data(), g.size());
+        const CellSchedule schedule = scheduleOf(grid, g);
         const auto cellOf = [&](uint32_t k) { return grid.cellOf(g.px[k], g.py[k], g.pz[k]); };
         uint32_t next = 0;
         for (const CellSchedule::Group& group : schedule.groups()) {
@@ -76,8 +81,7 @@ TEST(CellSchedule, TasksOfAColourWriteApart) {
         const float cellSize = 3.0f;
         NeighborGrid grid;
         const Globules g = sortedCloud(c.n, c.extent, c.height, c.offset, 9, cellSize, grid);
-        CellSchedule schedule;
-        schedule.build(grid, g.px.data(), g.py.data(), g.pz.data(), g.size());
+        const CellSchedule schedule = scheduleOf(grid, g);
         std::vector<int> visits(schedule.groups().size(), 0);
         std::size_t tasksSeen = 0, clashes = 0;
         for (int colour = 0; colour < CellSchedule::kColours; ++colour) {
@@ -121,8 +125,7 @@ TEST(CellSchedule, RunCursorAgreesInTheSchedulesOrder) {
     for (const Cloud& c : kClouds) {
         NeighborGrid grid;
         const Globules g = sortedCloud(c.n, c.extent, c.height, c.offset, 5, 3.0f, grid);
-        CellSchedule schedule;
-        schedule.build(grid, g.px.data(), g.py.data(), g.pz.data(), g.size());
+        const CellSchedule schedule = scheduleOf(grid, g);
         NeighborGrid::RunCursor cursor;
         std::array<NeighborGrid::Run, NeighborGrid::kMaxRuns> fresh, advanced;
         for (uint32_t task = 0; task < schedule.taskCount(); ++task) {
