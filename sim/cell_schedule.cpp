@@ -1,6 +1,5 @@
 #include "cell_schedule.h"
 
-
 namespace globular {
 
 namespace {

@@ -1,6 +1,6 @@
 #pragma once
 // The order in which the force loop visits the neighbour grid's cells when it evaluates
-// each pair once (Newton's third law, force_kernels.cpp). A cell's group of globules then
+// each pair once (Newton's third law, each_pair_once.h). A cell's group of globules then
 // writes forces not only to its members but also to their neighbours, all within one
 // cell edge. The rows of cells (fixed y and z) are coloured by y and z modulo 3 (9
 // colours): two rows of one colour are at least three cells apart in y or z, so what

@@ -97,8 +97,8 @@ void forEachList(const Globules& s, std::size_t first, const CellGroup& group, f
 /// Adds the entries of @p r (one per entry of @p list) back where @p list's entries were
 /// collected from (GroupCandidates::sources): to @p x, @p y, @p z (and @p heat) at the
 /// same places. Entries that are zero are left out: an entry that met no member may lie
-/// up to a cell edge and a hair away, where a segment of the same colour writes at the
-/// same time (CellSchedule), and a masked store leaves its globule untouched.
+/// up to a cell edge and a hair away, where a row of the same colour writes at the same
+/// time (CellSchedule), and a masked store leaves its globule untouched.
 inline void addBack(const GroupCandidates& list, const Reactions& r, float* x, float* y, float* z,
              float* heat) {
     const __m512 zero = _mm512_setzero_ps();
@@ -157,8 +157,8 @@ void forEachGroupByColour(const CellSchedule& schedule, SumGroup&& sumGroup) {
 /// radius: a group's candidates are those after its first member in grid order, one list
 /// per material, and each member sums over those after itself in its list; the opposite
 /// forces (and heat) gather per list and go to the candidates once the list is done
-/// (addBack). sumMember(w, lists, later, k, reactions) sums member k over lists[kind] from
-/// later[kind] on and adds its force (and heat) to @p forces[k]. Half the pairs of the
+/// (addBack). sumMember(w, lists, k, reactions) sums member k over lists[kind] from
+/// w.later[kind] on and adds its force (and heat) to @p forces[k]. Half the pairs of the
 /// loop that gathers each globule's own sum, for one scatter per list; the sums' order
 /// follows the colours and grid order, never the threads. @p forces (and heat) are zero.
 template <typename SumMember>

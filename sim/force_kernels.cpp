@@ -391,8 +391,8 @@ struct ThermalKernel {
             std::tie(pureDirect, blendedDirect) = forExponents(p.solid, direct);
             const auto later = []<int M, int N>() {
                 if constexpr (M > 0 && N > 0) {
-                    return std::pair{SumLaterAndHeat(sumLaterCandidatesAndHeat<M, N>),
-                                     SumLaterBlended(sumLaterBlendedCandidates<M, N>)};
+                    return std::pair{SumLaterAndHeat(candidatesAndHeat<M, N, ReactionLanes>),
+                                     SumLaterBlended(blendedCandidates<M, N, ReactionLanes>)};
                 } else {
                     return std::pair{SumLaterAndHeat(nullptr), SumLaterBlended(nullptr)};
                 }

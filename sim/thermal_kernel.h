@@ -333,27 +333,6 @@ inline float sumBlendedCandidates(const ThermalPair& pair, const CandidateLanes&
     return blendedCandidates<M, N>(pair, lanes, c, ti, reach2, fx, fy, fz, 0, NoReactions{},
                                    0.0f);
 }
-
-/// candidatesAndHeat over the candidates from @p from on, for the loop that evaluates
-/// each pair once: the opposite forces and heat left in @p reactions.
-template <int M, int N>
-inline float sumLaterCandidatesAndHeat(const PairForce& p, const CandidateLanes& lanes,
-                                       const GroupCandidates& c, float ti, float reach2,
-                                       float& fx, float& fy, float& fz, uint32_t from,
-                                       ReactionLanes reactions, float conductance) {
-    return candidatesAndHeat<M, N>(p, lanes, c, ti, reach2, fx, fy, fz, from, reactions,
-                                   conductance);
-}
-
-/// blendedCandidates from @p from on, the opposite forces and heat left in @p reactions.
-template <int M, int N>
-inline float sumLaterBlendedCandidates(const ThermalPair& pair, const CandidateLanes& lanes,
-                                       const GroupCandidates& c, float ti, float reach2,
-                                       float& fx, float& fy, float& fz, uint32_t from,
-                                       ReactionLanes reactions, float conductance) {
-    return blendedCandidates<M, N>(pair, lanes, c, ti, reach2, fx, fy, fz, from, reactions,
-                                   conductance);
-}
 #endif
 
 /// Adds to (fx, fy, fz) the force of every neighbour in @p batch (which holds their
