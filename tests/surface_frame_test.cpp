@@ -96,7 +96,7 @@ TEST(SurfaceFrame, TwoGlobulesBridgeOnlyWhenCloserThanTheMergeDistance) {
 }
 
 TEST(SurfaceFrame, BlobMeshIsManifoldWithOutwardNormals) {
-    for (double adaptivity : {0.0, 0.5}) {
+    for (double adaptivity : {0.0, 0.01, 0.5}) {
         SurfaceSettings s;
         s.voxelSize = 0.1;
         s.adaptivity = adaptivity;
@@ -114,6 +114,26 @@ TEST(SurfaceFrame, BlobMeshIsManifoldWithOutwardNormals) {
             ASSERT_NEAR(n[0] * n[0] + n[1] * n[1] + n[2] * n[2], 1.0f, 1e-5f);
         }
     }
+}
+
+// The pour's setting (scenes/bench/pour_1e5.toml): a slight adaptivity merges the flat
+// parts' triangles but keeps the surface where the uniform mesh has it.
+TEST(SurfaceFrame, SlightAdaptivityMergesFlatPartsAndKeepsTheVolume) {
+    std::vector<Vec3> puddle;  // one layer of touching globules: a flat top and bottom
+    for (int i = 0; i < 12; ++i) {
+        for (int k = 0; k < 12; ++k) puddle.push_back({1.5 * i, 0, 1.5 * k});
+    }
+    SurfaceSettings s;
+    s.voxelSize = 0.25;
+    const SurfaceFrame uniform = surfaceGlobules(globulesAt(puddle), s);
+    s.adaptivity = 0.01;
+    const SurfaceFrame merged = surfaceGlobules(globulesAt(puddle), s);
+    const MeshTopology a = analyzeMesh(uniform.mesh), b = analyzeMesh(merged.mesh);
+    EXPECT_LT(merged.mesh.triangleCount(), uniform.mesh.triangleCount() * 3 / 4);
+    EXPECT_EQ(b.boundaryEdges, 0u);
+    EXPECT_EQ(b.nonManifoldEdges, 0u);
+    EXPECT_NEAR(b.signedVolume, a.signedVolume, 0.01 * a.signedVolume);
+    EXPECT_NEAR(b.area, a.area, 0.01 * a.area);
 }
 
 TEST(SurfaceFrame, DilateAndErodeMoveTheSurfaceByTheirVoxels) {
