@@ -494,6 +494,59 @@ void sumRangeThermal(const std::vector<ThermalKernel>& kernels, std::size_t kind
     }
 }
 
+#if defined(__AVX512F__)
+/// sumEachPairOnce for thermal scenes. <M, N>: the exponents every pair of materials
+/// shares in both phases, so the kernels are called, and inlined, by name; <0, 0>: through
+/// each pair's pointers (ThermalKernel). Either way the same kernels, so the same bits.
+template <int M, int N>
+void thermalPairsOnce(const std::vector<ThermalKernel>& kernels, std::size_t kinds,
+                      NeighborWorkspace& w, const Globules& g, Accelerations& forces) {
+    sumEachPairOnce(
+        w.grid, w.schedule, g, kinds, true, forces,
+        [&](LaterPairsScratch& scratch, const std::vector<GroupCandidates>& lists, uint32_t k,
+            std::vector<Reactions>& reactions) {
+            const std::size_t mine = g.materialOf(k);
+            const float t = g.temperature[k];
+            float fx = 0, fy = 0, fz = 0, heat = 0;
+            for (std::size_t kind = 0; kind < kinds; ++kind) {
+                const uint32_t from = scratch.later[kind];
+                if (from >= lists[kind].count) continue;
+                const ThermalKernel& kernel = kernels[mine * kinds + kind];
+                const auto [lowest, highest] = scratch.ranges[kind];
+                const ThermalPhase phase = phaseOf(kernel.pair, t, lowest, highest);
+                const CandidateLanes lanes(lists[kind], memberAt(g, k), kernel.reach2);
+                const float conductance = kernel.pair.conductance;
+                const ReactionLanes opposite = reactions[kind].lanes();
+                float in;
+                if (phase == ThermalPhase::Blend) {
+                    if constexpr (M > 0) {
+                        in = blendedCandidates<M, N>(kernel.pair, lanes, lists[kind], t,
+                                                     kernel.reach2, fx, fy, fz, from, opposite,
+                                                     conductance);
+                    } else {
+                        in = kernel.blendedLater(kernel.pair, lanes, lists[kind], t,
+                                                 kernel.reach2, fx, fy, fz, from, opposite,
+                                                 conductance);
+                    }
+                } else {
+                    const PairForce& p =
+                        phase == ThermalPhase::Solid ? kernel.pair.solid : kernel.pair.liquid;
+                    if constexpr (M > 0) {
+                        in = candidatesAndHeat<M, N>(p, lanes, lists[kind], t, kernel.reach2,
+                                                     fx, fy, fz, from, opposite, conductance);
+                    } else {
+                        in = kernel.pureLater(p, lanes, lists[kind], t, kernel.reach2, fx, fy,
+                                              fz, from, opposite, conductance);
+                    }
+                }
+                heat += conductance * in;
+            }
+            addForce(forces, k, fx, fy, fz);
+            forces.heat[k] += heat;
+        });
+}
+#endif
+
 /// pairForcesThermal (forces.h); the dispatcher has checked the arrays.
 void thermal(Globules& g, const PairTable& pairs, NeighborWorkspace& w, Accelerations& forces) {
     const std::size_t n = g.size();
@@ -517,37 +570,17 @@ void thermal(Globules& g, const PairTable& pairs, NeighborWorkspace& w, Accelera
     if (eachPairOnce) {
         w.schedule.build(w.grid, g.px.data(), g.py.data(), g.pz.data(), n);
         zeroForces(forces, true);
-        sumEachPairOnce(
-            w.grid, w.schedule, g, kinds, true, forces,
-            [&](LaterPairsScratch& scratch, const std::vector<GroupCandidates>& lists, uint32_t k,
-                std::vector<Reactions>& reactions) {
-                const std::size_t mine = g.materialOf(k);
-                const float t = g.temperature[k];
-                float fx = 0, fy = 0, fz = 0, heat = 0;
-                for (std::size_t kind = 0; kind < kinds; ++kind) {
-                    const uint32_t from = scratch.later[kind];
-                    if (from >= lists[kind].count) continue;
-                    const ThermalKernel& kernel = kernels[mine * kinds + kind];
-                    const auto [lowest, highest] = scratch.ranges[kind];
-                    const ThermalPhase phase = phaseOf(kernel.pair, t, lowest, highest);
-                    const CandidateLanes lanes(lists[kind], memberAt(g, k), kernel.reach2);
-                    const float conductance = kernel.pair.conductance;
-                    float in;
-                    if (phase == ThermalPhase::Blend) {
-                        in = kernel.blendedLater(kernel.pair, lanes, lists[kind], t, kernel.reach2,
-                                                 fx, fy, fz, from, reactions[kind].lanes(),
-                                                 conductance);
-                    } else {
-                        const PairForce& p =
-                            phase == ThermalPhase::Solid ? kernel.pair.solid : kernel.pair.liquid;
-                        in = kernel.pureLater(p, lanes, lists[kind], t, kernel.reach2, fx, fy, fz,
-                                              from, reactions[kind].lanes(), conductance);
-                    }
-                    heat += conductance * in;
-                }
-                addForce(forces, k, fx, fy, fz);
-                forces.heat[k] += heat;
-            });
+        // One set of exponents for every pair and phase (the usual case): the kernels by
+        // name. ThermalKernel has checked that each pair's phases share theirs.
+        const PairForce& first = kernels.front().pair.solid;
+        const bool shared = std::all_of(kernels.begin(), kernels.end(), [&](const ThermalKernel& kernel) {
+            return kernel.pair.solid.mInt == first.mInt && kernel.pair.solid.nInt == first.nInt;
+        });
+        const auto loop = shared ? forExponents(first, []<int M, int N>() {
+                                       return &thermalPairsOnce<M, N>;
+                                   })
+                                 : &thermalPairsOnce<0, 0>;
+        loop(kernels, kinds, w, g, forces);
         return;
     }
 #endif
