@@ -305,9 +305,19 @@ TEST(Thermal, GridLoopMatchesTheAllPairsReference) {
     other.tLiquid = 90;
     other.liquid.b1 = 1.5;
     other.conductivity = 2;
-    const PairTable table({wax("a"), other}, {});
-    for (bool uniformRadius : {false, true}) {
-        SCOPED_TRACE(uniformRadius ? "uniform radius" : "two radii");
+    // The pair of the two with exponents of its own (10, 3): the loop that evaluates each
+    // pair once then calls each pair's kernels through pointers, not by name.
+    MaterialPairSettings ownExponents;
+    ownExponents.a = "a";
+    ownExponents.b = "b";
+    ownExponents.m = 10;
+    for (int variant = 0; variant < 4; ++variant) {
+        const bool uniformRadius = variant % 2 == 1, shared = variant < 2;
+        const PairTable table({wax("a"), other},
+                              shared ? std::vector<MaterialPairSettings>{}
+                                     : std::vector<MaterialPairSettings>{ownExponents});
+        SCOPED_TRACE(std::string(uniformRadius ? "uniform radius" : "two radii") +
+                     (shared ? "" : ", a pair with exponents of its own"));
         const Globules reference = warmCloud(600, 5, true, uniformRadius);
         Accelerations exact;
         pairForcesThermalAllPairs(reference, table, exact);
