@@ -1,6 +1,6 @@
 // Physically based shading and light (render/shaders.cpp, environment.h): the white
 // furnace (energy is conserved), roughness and metallic per material, soft shadows, the
-// environment file's errors, ambient occlusion at contacts.
+// environment file's errors, ambient occlusion at contacts (and none on the bare ground).
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -16,6 +16,8 @@
 #include <string>
 #include <utility>
 
+#include "box_mesh.h"
+#include "collider_mesh.h"
 #include "errors.h"
 #include "renderer.h"
 
@@ -288,6 +290,76 @@ TEST(Lighting, AmbientOcclusionDarkensTheContactOnly) {
         EXPECT_NEAR(occluded.pixel(x, y)[1], plain.pixel(x, y)[1], 0.01f * plain.pixel(x, y)[1])
             << "(" << x << ", " << y << ")";
     }
+}
+
+/// The setup of AmbientOcclusionDarkensTheContactOnly: a lit ground seen at an angle,
+/// occlusion of radius 1 and strength 1.
+FrameSetup occlusionSetup() {
+    FrameSetup s = bareSetup();
+    s.render.ground = true;
+    s.render.checkerSize = 1000;
+    s.render.environment = uniformEnvironment(1.0f).string();
+    s.camera = {{0, 3, 8}, {0, 0.5, 0}, 40};
+    s.content.add(Vec3{-3, 0, -3});
+    s.content.add(Vec3{3, 3, 3});
+    s.render.occlusionRadius = 1;
+    s.render.ambientOcclusion = 1;
+    return s;
+}
+
+// Why a liquid frame without props skips the pass (renderer.cpp): the ground is a plane,
+// every tap lies above it, so the pass leaves the bare ground as it was, to the bit. Not
+// at its far rim, where it fades into the background: there the old pass darkened a row
+// or two (a 64-pixel frame's occlusion radius spans pixels out there; at 1920x1080 the
+// pour's frames were byte-identical with and without it), so the rows nearer than the
+// view's centre are compared.
+TEST(Lighting, AmbientOcclusionLeavesTheBareGroundAsItIs) {
+    for (int samples : {1, 4}) {
+        SCOPED_TRACE(samples);
+        Renderer renderer(kSize, kSize, samples);
+        FrameSetup s = occlusionSetup();
+        renderer.drawSpheres(Globules{}, s);  // opaque content: the pass runs, on the ground
+        const LinearFrame occluded = renderer.lastFrame();
+        s.render.ambientOcclusion = 0;
+        renderer.drawSpheres(Globules{}, s);
+        const LinearFrame& plain = renderer.lastFrame();
+        std::size_t differing = 0;
+        for (int y = kSize / 2; y < kSize; ++y) {  // rows top first: the nearer half
+            for (int x = 0; x < kSize; ++x) {
+                for (int c = 0; c < 3; ++c) {
+                    ASSERT_GT(plain.pixel(x, y)[c], 0.05f) << "the ground must be lit here";
+                    differing += occluded.pixel(x, y)[c] != plain.pixel(x, y)[c];
+                }
+            }
+        }
+        EXPECT_EQ(differing, 0u);
+    }
+}
+
+// The skip does not reach a liquid frame with props: a box on the ground still darkens
+// the ground at its foot.
+TEST(Lighting, ALiquidFrameKeepsItsPropsOcclusion) {
+    Renderer renderer(kSize, kSize, 1);
+    FrameSetup s = occlusionSetup();
+    s.liquidSurface = true;
+    ColliderSettings box;
+    box.shape = "box";
+    box.size = {2, 2, 2};
+    box.center = {0, 1, 0};
+    s.props = {{colliderMesh(box, ColliderSolid(box, {}, 1), Pose{}), false}};
+    const BoxMesh pool({-3, 0, -3}, {-2, 0.2, -2});  // a little liquid, off to one side
+    renderer.drawMesh(pool.view(), s);
+    const LinearFrame occluded = renderer.lastFrame();
+    s.render.ambientOcclusion = 0;
+    renderer.drawMesh(pool.view(), s);
+    const LinearFrame& plain = renderer.lastFrame();
+    // The ground just below the box's front face: the first row under its foot.
+    float darkest = 1;
+    for (int y = kSize / 2; y < kSize; ++y) {
+        const float p = plain.pixel(kSize / 2, y)[1];
+        if (p > 0) darkest = std::min(darkest, occluded.pixel(kSize / 2, y)[1] / p);
+    }
+    EXPECT_LT(darkest, 0.9f);
 }
 
 TEST(Lighting, MissingEnvironmentFileIsAnErrorNamingIt) {
