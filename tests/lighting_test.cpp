@@ -252,20 +252,27 @@ TEST(Lighting, ShadowSoftnessWidensThePenumbra) {
     EXPECT_GT(soft, 2 * hard) << "hard " << hard << ", soft " << soft;
 }
 
-// Ambient occlusion darkens the floor where a sphere rests on it, and leaves the open
-// floor and the sphere's top as they were.
-TEST(Lighting, AmbientOcclusionDarkensTheContactOnly) {
-    Renderer renderer(kSize, kSize, 1);
+/// The occlusion tests' setup: a lit ground seen at an angle,
+/// occlusion of radius 1 and strength 1.
+FrameSetup occlusionSetup() {
     FrameSetup s = bareSetup();
     s.render.ground = true;
     s.render.checkerSize = 1000;
     s.render.environment = uniformEnvironment(1.0f).string();
     s.camera = {{0, 3, 8}, {0, 0.5, 0}, 40};
-    Bounds3 content;
-    content.add(Vec3{-3, 0, -3});
-    content.add(Vec3{3, 3, 3});
-    s.content = content;
+    s.content.add(Vec3{-3, 0, -3});
+    s.content.add(Vec3{3, 3, 3});
     s.render.occlusionRadius = 1;
+    s.render.ambientOcclusion = 1;
+    return s;
+}
+
+// Ambient occlusion darkens the floor where a sphere rests on it, and leaves the open
+// floor and the sphere's top as they were.
+TEST(Lighting, AmbientOcclusionDarkensTheContactOnly) {
+    Renderer renderer(kSize, kSize, 1);
+    FrameSetup s = occlusionSetup();
+    s.render.ambientOcclusion = 0;
     const Globules g = oneSphere({0, 1, 0}, 1);  // touching the ground at the origin
     renderer.drawSpheres(g, s);
     const LinearFrame plain = renderer.lastFrame();
@@ -290,21 +297,6 @@ TEST(Lighting, AmbientOcclusionDarkensTheContactOnly) {
         EXPECT_NEAR(occluded.pixel(x, y)[1], plain.pixel(x, y)[1], 0.01f * plain.pixel(x, y)[1])
             << "(" << x << ", " << y << ")";
     }
-}
-
-/// The setup of AmbientOcclusionDarkensTheContactOnly: a lit ground seen at an angle,
-/// occlusion of radius 1 and strength 1.
-FrameSetup occlusionSetup() {
-    FrameSetup s = bareSetup();
-    s.render.ground = true;
-    s.render.checkerSize = 1000;
-    s.render.environment = uniformEnvironment(1.0f).string();
-    s.camera = {{0, 3, 8}, {0, 0.5, 0}, 40};
-    s.content.add(Vec3{-3, 0, -3});
-    s.content.add(Vec3{3, 3, 3});
-    s.render.occlusionRadius = 1;
-    s.render.ambientOcclusion = 1;
-    return s;
 }
 
 // Why a liquid frame without props skips the pass (renderer.cpp): the ground is a plane,
