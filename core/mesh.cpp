@@ -207,13 +207,35 @@ void readVertices(const PlyElement& element, PlyCursor& cursor, TriangleMesh& me
     mesh.positions.reserve(3 * element.count);
     if (hasNormals) mesh.normals.reserve(3 * element.count);
     std::vector<double> record(element.properties.size());
-    for (uint64_t v = 0; v < element.count; ++v) {
-        for (std::size_t k = 0; k < element.properties.size(); ++k) {
-            const PlyProperty& p = element.properties[k];
+    // Binary rows without lists have one size: each row is taken whole, its end checked
+    // once, and its values decoded in place (the render plan reads every frame's mesh).
+    std::vector<std::size_t> offset;
+    std::size_t rowBytes = 0;
+    if (cursor.isBinary()) {
+        for (const PlyProperty& p : element.properties) {
             if (p.isList()) {
-                cursor.skip(p);
-            } else {
-                record[k] = cursor.read(p.type);
+                offset.clear();
+                break;
+            }
+            offset.push_back(rowBytes);
+            rowBytes += plyTypeSize(p.type);
+        }
+    }
+    const bool wholeRows = !offset.empty();
+    for (uint64_t v = 0; v < element.count; ++v) {
+        if (wholeRows) {
+            const unsigned char* row = cursor.take(rowBytes);
+            for (std::size_t k = 0; k < offset.size(); ++k) {
+                record[k] = cursor.decode(element.properties[k].type, row + offset[k]);
+            }
+        } else {
+            for (std::size_t k = 0; k < element.properties.size(); ++k) {
+                const PlyProperty& p = element.properties[k];
+                if (p.isList()) {
+                    cursor.skip(p);
+                } else {
+                    record[k] = cursor.read(p.type);
+                }
             }
         }
         for (int k : {x, y, z}) {
@@ -257,8 +279,16 @@ void readFaces(const PlyElement& element, PlyCursor& cursor, TriangleMesh& mesh)
                 throw std::runtime_error("face " + std::to_string(f) + " has fewer than 3 vertices");
             }
             polygon.clear();
+            // Binary: the whole list taken at once, its end checked once.
+            const std::size_t itemBytes = cursor.isBinary() ? plyTypeSize(p.type) : 0;
+            if (cursor.isBinary() && itemBytes == 0) throw std::runtime_error("unknown property type");
+            if (cursor.isBinary() && n > cursor.remaining() / itemBytes) {
+                throw std::runtime_error("data is truncated");
+            }
+            const unsigned char* items = cursor.isBinary() ? cursor.take(n * itemBytes) : nullptr;
             for (std::size_t i = 0; i < n; ++i) {
-                const double index = cursor.read(p.type);
+                const double index =
+                    items ? cursor.decode(p.type, items + i * itemBytes) : cursor.read(p.type);
                 if (!(index >= 0 && index < double(mesh.vertexCount()))) {
                     throw std::runtime_error(
                         "face " + std::to_string(f) + " refers to vertex " +

@@ -33,8 +33,9 @@ std::string quoted(std::string_view line) {
     return "'" + quoteForMessage(std::string(line), 80) + "'";
 }
 
+/// The value of type T at @p bytes, in the host's byte order.
 template <typename T>
-double decode(const unsigned char* bytes) {
+double decodeAs(const unsigned char* bytes) {
     T value;
     std::memcpy(&value, bytes, sizeof value);
     return double(value);
@@ -124,20 +125,34 @@ double PlyCursor::read(PlyType type) {
 double PlyCursor::readBinary(PlyType type) {
     const std::size_t size = plyTypeSize(type);
     if (size == 0) throw std::runtime_error("unknown property type");
-    if (remaining() < size) throw std::runtime_error("data is truncated");
+    return decode(type, take(size));
+}
+
+const unsigned char* PlyCursor::take(std::size_t bytes) {
+    if (remaining() < bytes) throw std::runtime_error("data is truncated");
+    const auto* at = reinterpret_cast<const unsigned char*>(mData.data() + mPos);
+    mPos += bytes;
+    return at;
+}
+
+double PlyCursor::decode(PlyType type, const unsigned char* at) const {
+    // The common case, our own files' floats, first and without the copy.
+    if (type == PlyType::Float32 && mFormat == PlyFormat::BinaryLittleEndian) {
+        return decodeAs<float>(at);
+    }
     unsigned char bytes[8];
-    std::memcpy(bytes, mData.data() + mPos, size);
-    mPos += size;
+    const std::size_t size = plyTypeSize(type);
+    std::memcpy(bytes, at, size);
     if (mFormat == PlyFormat::BinaryBigEndian) std::reverse(bytes, bytes + size);
     switch (type) {
-        case PlyType::Int8: return decode<int8_t>(bytes);
-        case PlyType::UInt8: return decode<uint8_t>(bytes);
-        case PlyType::Int16: return decode<int16_t>(bytes);
-        case PlyType::UInt16: return decode<uint16_t>(bytes);
-        case PlyType::Int32: return decode<int32_t>(bytes);
-        case PlyType::UInt32: return decode<uint32_t>(bytes);
-        case PlyType::Float32: return decode<float>(bytes);
-        case PlyType::Float64: return decode<double>(bytes);
+        case PlyType::Int8: return decodeAs<int8_t>(bytes);
+        case PlyType::UInt8: return decodeAs<uint8_t>(bytes);
+        case PlyType::Int16: return decodeAs<int16_t>(bytes);
+        case PlyType::UInt16: return decodeAs<uint16_t>(bytes);
+        case PlyType::Int32: return decodeAs<int32_t>(bytes);
+        case PlyType::UInt32: return decodeAs<uint32_t>(bytes);
+        case PlyType::Float32: return decodeAs<float>(bytes);
+        case PlyType::Float64: return decodeAs<double>(bytes);
         case PlyType::None: break;
     }
     throw std::runtime_error("unknown property type");

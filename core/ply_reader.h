@@ -51,6 +51,13 @@ public:
     PlyCursor(const std::string& data, const PlyHeader& header);
 
     double read(PlyType type);
+    /// Whether the data is binary: then take() and decode() read it a row at a time, with
+    /// one check of the end for the row rather than one per value.
+    bool isBinary() const { return mFormat != PlyFormat::Ascii; }
+    /// The next @p bytes of binary data, checked to be there; the cursor moves past them.
+    const unsigned char* take(std::size_t bytes);
+    /// One binary value of @p type (not None) at @p bytes, in the file's byte order.
+    double decode(PlyType type, const unsigned char* bytes) const;
     /// A list's length, read as @p countType and checked to be a whole number that fits.
     std::size_t readListLength(PlyType countType);
     /// Refuses @p element when its declared count cannot fit in the bytes left (each

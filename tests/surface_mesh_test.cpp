@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -123,6 +125,61 @@ TEST(MeshFile, ObjHasVerticesNormalsAndOneBasedFaces) {
     EXPECT_EQ(vn, 8);
     EXPECT_EQ(f, 12);
     EXPECT_EQ(firstFace, "f 1//1 3//3 4//4");
+}
+
+/// @p value as @p T's bytes, reversed for a big-endian file.
+template <typename T>
+void appendValue(std::string& out, T value, bool bigEndian) {
+    char bytes[sizeof(T)];
+    std::memcpy(bytes, &value, sizeof(T));
+    if (bigEndian) std::reverse(bytes, bytes + sizeof(T));
+    out.append(bytes, sizeof(T));
+}
+
+/// A unit square in binary PLY, each vertex's x, y, z as a double, a float and a short,
+/// with a float temperature and an int material, and one quad with ushort indices.
+std::string binarySquare(bool bigEndian) {
+    std::string out = std::string("ply\nformat ") +
+                      (bigEndian ? "binary_big_endian" : "binary_little_endian") +
+                      " 1.0\nelement vertex 4\nproperty double x\nproperty float y\n"
+                      "property short z\nproperty float temperature\nproperty int material\n"
+                      "element face 1\nproperty list uchar ushort vertex_indices\nend_header\n";
+    const double corners[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (int v = 0; v < 4; ++v) {
+        appendValue(out, corners[v][0], bigEndian);
+        appendValue(out, float(corners[v][1]), bigEndian);
+        appendValue(out, int16_t(-2), bigEndian);
+        appendValue(out, 20.5f + float(v), bigEndian);
+        appendValue(out, int32_t(v % 2), bigEndian);
+    }
+    out += char(4);
+    for (uint16_t index : {0, 1, 2, 3}) appendValue(out, index, bigEndian);
+    return out;
+}
+
+TEST(MeshFile, ReadsBinaryPlyRowsOfEveryTypeInEitherByteOrder) {
+    for (bool bigEndian : {false, true}) {
+        const fs::path path = scratch("square.ply");
+        writeText(path, binarySquare(bigEndian));
+        const TriangleMesh m = readMeshPly(path);
+        EXPECT_EQ(m.positions, (std::vector<float>{0, 0, -2, 1, 0, -2, 1, 1, -2, 0, 1, -2}))
+            << bigEndian;
+        EXPECT_EQ(m.triangles, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
+        ASSERT_NE(m.attribute("temperature"), nullptr);
+        EXPECT_EQ(m.attribute("temperature")->values, (std::vector<float>{20.5f, 21.5f, 22.5f, 23.5f}));
+        ASSERT_NE(m.attribute("material"), nullptr);
+        EXPECT_EQ(m.attribute("material")->values, (std::vector<float>{0, 1, 0, 1}));
+
+        // Cut anywhere in the data, the file is refused as truncated: in a vertex row and
+        // in the face's list.
+        const std::string whole = binarySquare(bigEndian);
+        const std::size_t data = whole.find("end_header\n") + 11;
+        for (std::size_t cut : {data + 3, data + 4 * 22 - 1, whole.size() - 1}) {
+            writeText(path, whole.substr(0, cut));
+            EXPECT_NE(ioErrorOf(path).find("truncated"), std::string::npos)
+                << "cut at " << cut - data << ": " << ioErrorOf(path);
+        }
+    }
 }
 
 TEST(MeshFile, ReadsAsciiPlyWithQuadsAsFans) {
