@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <fstream>
 #include <functional>
 #include <numeric>
@@ -22,8 +23,8 @@ Globules chain(Globules g, Vec3 start, int count, double spacing, float radius, 
     return g;
 }
 
-/// Cluster count by brute force over all pairs, for comparison with the grid.
-std::size_t bruteForceClusters(const Globules& g) {
+/// Cluster sizes by brute force over all pairs, largest first, for comparison with the grid.
+std::vector<std::size_t> bruteForceClusterSizes(const Globules& g) {
     std::vector<std::size_t> parent(g.size());
     std::iota(parent.begin(), parent.end(), 0);
     std::function<std::size_t(std::size_t)> find = [&](std::size_t x) {
@@ -35,10 +36,14 @@ std::size_t bruteForceClusters(const Globules& g) {
             if (d < double(g.radius[i]) + g.radius[j]) parent[find(i)] = find(j);
         }
     }
-    std::size_t roots = 0;
-    for (std::size_t i = 0; i < g.size(); ++i) roots += find(i) == i;
-    return roots;
+    std::vector<std::size_t> sizeOf(g.size(), 0);
+    for (std::size_t i = 0; i < g.size(); ++i) ++sizeOf[find(i)];
+    std::erase(sizeOf, 0);
+    std::sort(sizeOf.rbegin(), sizeOf.rend());
+    return sizeOf;
 }
+
+std::size_t bruteForceClusters(const Globules& g) { return bruteForceClusterSizes(g).size(); }
 
 TEST(FrameStats, EmptySetIsAllZero) {
     const FrameStats s = computeFrameStats(Globules{}, 4, 0.5);
@@ -107,6 +112,85 @@ TEST(FrameStats, ClustersMatchBruteForce) {
     Globules g;
     for (int i = 0; i < 2000; ++i) g.add({pos(rng), pos(rng), pos(rng)}, {}, rad(rng), 1, i);
     EXPECT_EQ(computeFrameStats(g, 1, 0).clusterCount, bruteForceClusters(g));
+}
+
+/// Radii close together (the usual case) take small cells whose globules all overlap;
+/// the count and the largest cluster must still be those of every pair. Dense enough
+/// that clusters grow long and branch (near percolation), and at a uniform radius, and
+/// far from the origin.
+TEST(FrameStats, ClustersOfCloseRadiiMatchBruteForce) {
+    struct Case {
+        float smallest, largest, box;
+        double offset;
+    };
+    for (const Case& c : {Case{0.5f, 0.5f, 12, 0}, Case{0.8f, 1.0f, 22, 0},
+                          Case{0.45f, 0.5f, 12, -3000}, Case{0.5f, 0.5f, 6, 0}}) {
+        std::mt19937 rng(11);
+        std::uniform_real_distribution<float> pos(0, c.box), rad(c.smallest, c.largest);
+        Globules g;
+        for (int i = 0; i < 2000; ++i) {
+            g.add(Vec3{pos(rng) + c.offset, pos(rng), pos(rng) - c.offset}, {}, rad(rng), 1, i);
+        }
+        const std::vector<std::size_t> expected = bruteForceClusterSizes(g);
+        const FrameStats s = computeFrameStats(g, 1, 0);
+        EXPECT_EQ(s.clusterCount, expected.size()) << c.smallest << " box " << c.box;
+        EXPECT_EQ(s.largestClusterFraction, double(expected.front()) / 2000.0)
+            << c.smallest << " box " << c.box;
+        // Not a trivial case: several clusters, and the largest of more than a few.
+        if (c.box > 6) {
+            EXPECT_GT(expected.size(), 20u);
+            EXPECT_GT(expected.front(), 20u);
+        } else {
+            EXPECT_EQ(expected.size(), 1u);  // packed: one cluster
+        }
+    }
+}
+
+/// A cubic lattice a hair wider than the globules is 1000 clusters of one, a hair
+/// narrower is one cluster, along the axes and with the lattice turned.
+TEST(FrameStats, LatticeJustApartOrJustTouchingIsExact) {
+    for (double spacing : {1.001, 0.999}) {
+        for (bool turned : {false, true}) {
+            Globules g;
+            for (int i = 0; i < 1000; ++i) {
+                const Vec3 p{spacing * (i % 10), spacing * (i / 10 % 10), spacing * (i / 100)};
+                // Turned 45 degrees about y, then 35.26 about x: the lattice's diagonals
+                // lie along the axes of the cells.
+                const double c1 = std::sqrt(0.5), c2 = std::sqrt(2.0 / 3.0), s2 = std::sqrt(1.0 / 3.0);
+                const Vec3 a{c1 * p.x + c1 * p.z, p.y, -c1 * p.x + c1 * p.z};
+                const Vec3 b{a.x, c2 * a.y - s2 * a.z, s2 * a.y + c2 * a.z};
+                g.add(turned ? b + Vec3{5, 5, 5} : p, {}, 0.5f, 1, i);
+            }
+            EXPECT_EQ(computeFrameStats(g, 1, 0).clusterCount, spacing > 1 ? 1000u : 1u)
+                << spacing << (turned ? " turned" : "");
+        }
+    }
+}
+
+/// Compact clumps, dense enough that the statistics group globules by small cells (as
+/// in a settled pile), side by side across gaps from well apart to overlapping, with a
+/// few loose globules between: the count and the largest cluster of every pair.
+TEST(FrameStats, DenseClumpsMatchBruteForce) {
+    for (float radius : {0.5f, 0.45f}) {
+        std::mt19937 rng(7);
+        std::uniform_real_distribution<float> in(0, 2.5f), jitter(-0.5f, 0.5f);
+        Globules g;
+        float x = 0;
+        int id = 0;
+        for (float gap : {0.6f, 0.95f, 1.0f, 1.05f, 1.5f, 0.8f}) {
+            for (int k = 0; k < 300; ++k) {
+                g.add({x + in(rng), in(rng), in(rng)}, {}, radius + 0.05f * jitter(rng), 1, id++);
+            }
+            g.add({x + 2.5 + 0.5 * gap, 6 + jitter(rng), 0}, {}, radius, 1, id++);  // loose
+            x += 2.5f + gap;
+        }
+        const std::vector<std::size_t> expected = bruteForceClusterSizes(g);
+        const FrameStats s = computeFrameStats(g, 1, 0);
+        EXPECT_EQ(s.clusterCount, expected.size()) << radius;
+        EXPECT_EQ(s.largestClusterFraction, double(expected.front()) / double(g.size())) << radius;
+        EXPECT_GT(expected.size(), 8u);  // the loose ones and some clumps apart
+        EXPECT_GE(expected.front(), 600u);  // and some clumps joined
+    }
 }
 
 TEST(FrameStats, NonFinitePositionIsAClusterOfItsOwn) {
