@@ -281,7 +281,9 @@ void readFaces(const PlyElement& element, PlyCursor& cursor, TriangleMesh& mesh)
             polygon.clear();
             // Binary: the whole list taken at once, its end checked once.
             const std::size_t itemBytes = cursor.isBinary() ? plyTypeSize(p.type) : 0;
-            if (cursor.isBinary() && itemBytes == 0) throw std::runtime_error("unknown property type");
+            if (cursor.isBinary() && itemBytes == 0) {
+                throw std::runtime_error("unknown property type");
+            }
             if (cursor.isBinary() && n > cursor.remaining() / itemBytes) {
                 throw std::runtime_error("data is truncated");
             }

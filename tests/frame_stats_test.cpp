@@ -156,7 +156,8 @@ TEST(FrameStats, LatticeJustApartOrJustTouchingIsExact) {
                 const Vec3 p{spacing * (i % 10), spacing * (i / 10 % 10), spacing * (i / 100)};
                 // Turned 45 degrees about y, then 35.26 about x: the lattice's diagonals
                 // lie along the axes of the cells.
-                const double c1 = std::sqrt(0.5), c2 = std::sqrt(2.0 / 3.0), s2 = std::sqrt(1.0 / 3.0);
+                const double c1 = std::sqrt(0.5), c2 = std::sqrt(2.0 / 3.0);
+                const double s2 = std::sqrt(1.0 / 3.0);
                 const Vec3 a{c1 * p.x + c1 * p.z, p.y, -c1 * p.x + c1 * p.z};
                 const Vec3 b{a.x, c2 * a.y - s2 * a.z, s2 * a.y + c2 * a.z};
                 g.add(turned ? b + Vec3{5, 5, 5} : p, {}, 0.5f, 1, i);

@@ -166,7 +166,8 @@ TEST(MeshFile, ReadsBinaryPlyRowsOfEveryTypeInEitherByteOrder) {
             << bigEndian;
         EXPECT_EQ(m.triangles, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
         ASSERT_NE(m.attribute("temperature"), nullptr);
-        EXPECT_EQ(m.attribute("temperature")->values, (std::vector<float>{20.5f, 21.5f, 22.5f, 23.5f}));
+        EXPECT_EQ(m.attribute("temperature")->values,
+                  (std::vector<float>{20.5f, 21.5f, 22.5f, 23.5f}));
         ASSERT_NE(m.attribute("material"), nullptr);
         EXPECT_EQ(m.attribute("material")->values, (std::vector<float>{0, 1, 0, 1}));
 
