@@ -194,6 +194,32 @@ TEST(FrameStats, DenseClumpsMatchBruteForce) {
     }
 }
 
+/// Two dense lattices (2-3 globules to a statistics cell, as in a settled pile), their
+/// facing globules a hair farther apart than touching or a hair closer: two clusters or
+/// one, along the axes and turned.
+TEST(FrameStats, DenseLatticesJustApartOrJustTouchingAreExact) {
+    for (double gap : {1.001, 0.999}) {
+        for (bool turned : {false, true}) {
+            Globules g;
+            for (int i = 0; i < 1024; ++i) {
+                const int k = i % 512;
+                const double shift = i < 512 ? 0 : 7 * 0.4 + gap;
+                const Vec3 p{0.4 * (k % 8) + shift, 0.4 * (k / 8 % 8), 0.4 * (k / 64)};
+                // Turned so that the gap runs along a cell's diagonal, where a cell of
+                // the right size just cannot hold both sides of it.
+                const Vec3 e1 = Vec3{1, 1, 1} * (1 / std::sqrt(3.0)),
+                           e2 = Vec3{1, -1, 0} * (1 / std::sqrt(2.0)),
+                           e3 = Vec3{1, 1, -2} * (1 / std::sqrt(6.0));
+                const Vec3 t = e1 * p.x + e2 * p.y + e3 * p.z;
+                g.add(turned ? t + Vec3{3, 3, 3} : p, {}, 0.5f, 1, i);
+            }
+            const FrameStats s = computeFrameStats(g, 1, 0);
+            EXPECT_EQ(s.clusterCount, gap > 1 ? 2u : 1u) << gap << (turned ? " turned" : "");
+            EXPECT_EQ(s.largestClusterFraction, gap > 1 ? 0.5 : 1.0);
+        }
+    }
+}
+
 TEST(FrameStats, NonFinitePositionIsAClusterOfItsOwn) {
     Globules g = chain({}, {0, 0, 0}, 3, 1.0, 1.0f, 0);
     g.add({NAN, 0, 0}, {}, 1.0f, 1, 9);
