@@ -279,14 +279,9 @@ void readFaces(const PlyElement& element, PlyCursor& cursor, TriangleMesh& mesh)
                 throw std::runtime_error("face " + std::to_string(f) + " has fewer than 3 vertices");
             }
             polygon.clear();
-            // Binary: the whole list taken at once, its end checked once.
-            const std::size_t itemBytes = cursor.isBinary() ? plyTypeSize(p.type) : 0;
-            if (cursor.isBinary() && itemBytes == 0) {
-                throw std::runtime_error("unknown property type");
-            }
-            if (cursor.isBinary() && n > cursor.remaining() / itemBytes) {
-                throw std::runtime_error("data is truncated");
-            }
+            // Binary: the whole list taken at once, its end checked once (n < 2^32 items
+            // of at most 8 bytes: the product cannot overflow).
+            const std::size_t itemBytes = plyTypeSize(p.type);
             const unsigned char* items = cursor.isBinary() ? cursor.take(n * itemBytes) : nullptr;
             for (std::size_t i = 0; i < n; ++i) {
                 const double index =

@@ -63,6 +63,20 @@ bool binnable(const Globules& g, std::size_t i, double cellSize) {
     return true;
 }
 
+/// The size of each set of @p sets over its @p nodes, node k holding @p globulesIn(k)
+/// globules, after @p singles clusters of one (globules that were not binned).
+template <typename GlobulesIn>
+std::vector<std::size_t> setSizes(ConcurrentUnionFind& sets, std::size_t nodes,
+                                  std::size_t singles, GlobulesIn&& globulesIn) {
+    std::vector<std::size_t> sizeOfRoot(nodes, 0);
+    for (std::size_t k = 0; k < nodes; ++k) sizeOfRoot[sets.find(uint32_t(k))] += globulesIn(k);
+    std::vector<std::size_t> sizes(singles, 1);
+    for (std::size_t size : sizeOfRoot) {
+        if (size > 0) sizes.push_back(size);
+    }
+    return sizes;
+}
+
 /// Cells whose diagonal is this fraction of the smallest overlap distance: rounding in
 /// the cell of a position and in the pair test stays far inside the margin.
 constexpr double kCellDiagonalFraction = 0.99;
@@ -210,15 +224,8 @@ std::vector<std::size_t> clusterSizesByCells(const std::vector<float>& px,
             }
         }
     });
-    std::vector<std::size_t> sizeOfRoot(cells, 0);
-    for (std::size_t c = 0; c < cells; ++c) {
-        sizeOfRoot[sets.find(uint32_t(c))] += start[c + 1] - start[c];
-    }
-    std::vector<std::size_t> sizes(unbinnable, 1);  // clusters of one
-    for (std::size_t size : sizeOfRoot) {
-        if (size > 0) sizes.push_back(size);
-    }
-    return sizes;
+    return setSizes(sets, cells, unbinnable,
+                    [&](std::size_t c) { return std::size_t(start[c + 1] - start[c]); });
 }
 
 }  // namespace
@@ -297,13 +304,7 @@ std::vector<std::size_t> overlapClusterSizes(const Globules& g) {
                 }
             }
         });
-    std::vector<std::size_t> sizeOfRoot(m, 0);
-    for (std::size_t s = 0; s < m; ++s) ++sizeOfRoot[sets.find(uint32_t(s))];
-    std::vector<std::size_t> sizes(n - m, 1);  // the unbinnable stay clusters of one
-    for (std::size_t size : sizeOfRoot) {
-        if (size > 0) sizes.push_back(size);
-    }
-    return sizes;
+    return setSizes(sets, m, n - m, [](std::size_t) { return std::size_t(1); });
 }
 
 }  // namespace globular
