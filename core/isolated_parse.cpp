@@ -68,13 +68,7 @@ uint64_t halfOfPhysicalMemory() {
         const int null = ::open("/dev/null", O_WRONLY);
         if (null >= 0) ::dup2(null, STDERR_FILENO);
     }
-    // A hostile size field then fails as bad_alloc here instead of taking the machine's
-    // memory. AddressSanitizer reserves terabytes of shadow: no limit under it.
-    if (!kAddressSanitizer && memoryBytes > 0) {
-        const rlim_t limit = rlim_t(addressSpaceInUse() + memoryBytes);
-        const rlimit r{limit, limit};
-        ::setrlimit(RLIMIT_AS, &r);
-    }
+    limitAddressSpaceGrowth(memoryBytes);
     std::string answer;
     char status = kAnswered;
     try {
@@ -155,21 +149,34 @@ double readerSeconds(const fs::path& path) {
     return 20.0 + (ec ? 0.0 : double(size) / 10e6);
 }
 
+ChildLimits readerLimits(const fs::path& path, ChildLimits limits) {
+    if (limits.seconds <= 0) limits.seconds = readerSeconds(path);
+    if (limits.memoryBytes == 0) {
+        // Decompressed data may be far larger than the file, but not beyond reason: a
+        // damaged size field then fails fast instead of touching gigabytes.
+        std::error_code ec;
+        const uint64_t size = fs::file_size(path, ec);
+        const uint64_t byFile = std::max<uint64_t>(kMinChildMemory, ec ? 0 : size * 64);
+        const uint64_t half = halfOfPhysicalMemory();
+        limits.memoryBytes = half > 0 ? std::min(byFile, half) : byFile;
+    }
+    return limits;
+}
+
+void limitAddressSpaceGrowth(uint64_t bytes) {
+    rlimit r{};
+    if (kAddressSanitizer || ::getrlimit(RLIMIT_AS, &r) != 0) return;
+    r.rlim_cur = bytes > 0 ? rlim_t(addressSpaceInUse() + bytes) : r.rlim_max;
+    if (r.rlim_max != RLIM_INFINITY && r.rlim_cur > r.rlim_max) r.rlim_cur = r.rlim_max;
+    ::setrlimit(RLIMIT_AS, &r);
+}
+
 std::string parseInChild(const fs::path& path, const std::function<std::string()>& parse,
                          ChildLimits limits) {
     const auto fail = [&](const std::string& what) {
         return IoError("cannot read " + path.string() + ": " + what);
     };
-    std::error_code ec;
-    const uint64_t size = fs::file_size(path, ec);
-    if (limits.seconds <= 0) limits.seconds = readerSeconds(path);
-    if (limits.memoryBytes == 0) {
-        // Decompressed data may be far larger than the file, but not beyond reason: a
-        // damaged size field then fails fast instead of touching gigabytes.
-        const uint64_t byFile = std::max<uint64_t>(kMinChildMemory, ec ? 0 : size * 64);
-        const uint64_t half = halfOfPhysicalMemory();
-        limits.memoryBytes = half > 0 ? std::min(byFile, half) : byFile;
-    }
+    limits = readerLimits(path, limits);
 
     // A reader that hangs gets one more try: the child of a process with other threads
     // can start with a lock held by a thread it does not have (fork copies only the

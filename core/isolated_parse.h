@@ -21,6 +21,15 @@ struct ChildLimits {
 /// The wall-time limit of a reader of @p path: 20 s plus 1 s per 10 MB of the file.
 double readerSeconds(const std::filesystem::path& path);
 
+/// @p limits with each 0 replaced by its default for a reader of @p path.
+ChildLimits readerLimits(const std::filesystem::path& path, ChildLimits limits = {});
+
+/// Lets this process's address space grow by at most @p bytes from now on (RLIMIT_AS's
+/// soft limit; 0, or a build with AddressSanitizer, which reserves terabytes of shadow:
+/// no limit), so that a hostile size field fails as bad_alloc instead of taking the
+/// machine's memory. The hard limit is left as it was, so a later call may raise it.
+void limitAddressSpaceGrowth(uint64_t bytes);
+
 /// Runs @p parse in a forked child and @return the bytes it returned. The child is a copy
 /// of this process with only the calling thread: @p parse must not use TBB or start
 /// threads. What it returns must be re-validated by the caller like any input.

@@ -26,6 +26,20 @@ using PathParser = std::string (*)(const std::filesystem::path&);
 /// Without it the helper starts on the first read, which may be on a worker thread.
 void startReaderHelper();
 
+/// @p parse run by the warm reader: one process, forked by the helper on first use, that
+/// parses file after file. Reading a frame's cache in a child forked for it cost 8x the
+/// parse itself on this project's virtual machines, where every page a new process
+/// touches first is a slow fault (docs/performance.md, "Nineteenth pass"); the warm
+/// reader's memory is already mapped. It keeps the isolation that matters: a crash or a
+/// hang ends the reader, not this program. Whatever it fails on (an error, a crash, its
+/// time limit), or where it cannot start, the file is read again by
+/// parseInHelperChild, whose answer or IoError is returned: so every error comes from a
+/// reader that had read nothing before, and a reader that met a damaged file is never
+/// used again. Calls from several threads take turns. @p seconds: the warm reader's time
+/// limit (0: readerSeconds(path)).
+std::string parseInWarmReader(const std::filesystem::path& path, PathParser parse,
+                              double seconds = 0);
+
 /// parseInChild(path, [&] { return parse(path); }) with the child forked by the helper.
 /// Calls from several threads take turns. Where the helper cannot be started or stops
 /// answering (killed, or it hangs), this process forks the reader itself, as before.

@@ -186,7 +186,7 @@ std::string parseVdbInChild(const fs::path& path, uint64_t maxBytes, PathParser 
     } catch (const std::exception& e) {
         throw IoError("cannot read " + path.string() + ": " + e.what());
     }
-    return parseInHelperChild(path, parse);
+    return parseInWarmReader(path, parse);
 }
 
 openvdb::GridPtrVecPtr decodeStreamedVdb(const std::string& bytes) {

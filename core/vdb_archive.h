@@ -39,8 +39,9 @@ void writeVdbFile(const std::filesystem::path& path, const openvdb::GridCPtrVec&
 void checkVdbBytes(const std::string& bytes);
 
 /// The first half of reading a VDB file that may be damaged: its bytes are read (at most
-/// @p maxBytes) and checked (checkVdbBytes), then @p parse runs in a child process
-/// (isolated_parse.h, forked by the reader helper: reader_helper.h) and its answer is returned, for the caller to decode and check.
+/// @p maxBytes) and checked (checkVdbBytes), then @p parse runs in another process (the
+/// warm reader, and where it fails a child forked for this file: reader_helper.h) and its
+/// answer is returned, for the caller to decode and check.
 /// @throw IoError "cannot read PATH: ..." for every failure on the way.
 std::string parseVdbInChild(const std::filesystem::path& path, uint64_t maxBytes,
                             PathParser parse);

@@ -13,8 +13,10 @@
 #include <filesystem>
 #include <fstream>
 #include <latch>
+#include <memory>
 #include <mutex>
 #include <random>
+#include <sstream>
 #include <string>
 #include <thread>
 
@@ -403,6 +405,127 @@ TEST(ReaderHelper, AKilledHelperIsBypassedThenReplaced) {
     EXPECT_NE(next, helper);
     EXPECT_NE(next, ::getpid());
     EXPECT_EQ(parentOf(next), ::getpid());
+}
+
+/// This process's id and how many files it has parsed, this one included.
+std::string parsesInThisProcess(const fs::path&) {
+    static int count = 0;
+    return std::to_string(::getpid()) + " " + std::to_string(++count);
+}
+
+struct Parses {
+    pid_t pid = 0;
+    int count = 0;
+};
+
+Parses warmParses() {
+    std::istringstream answer(parseInWarmReader("x", parsesInThisProcess));
+    Parses p;
+    answer >> p.pid >> p.count;
+    return p;
+}
+
+// The warm reader is one process, a child of the helper, that reads file after file
+// (reader_helper.h): its memory is already mapped, where a process forked for each file
+// faults on every page it touches.
+TEST(WarmReader, OneProcessReadsFileAfterFile) {
+    const pid_t helper = pid_t(std::stol(parseInHelperChild("x", readersParent)));
+    const Parses first = warmParses(), second = warmParses();
+    EXPECT_NE(first.pid, ::getpid());
+    EXPECT_EQ(second.pid, first.pid);
+    EXPECT_EQ(second.count, first.count + 1);
+    EXPECT_EQ(parentOf(first.pid), helper);
+}
+
+// Whatever the warm reader fails on is read again by a reader forked for it, whose answer
+// or error counts, and the warm reader is not used again: the next one has read nothing.
+TEST(WarmReader, AFailedReadIsAnsweredByAFreshReaderAndEndsTheWarmOne) {
+    const Parses before = warmParses();
+    try {
+        parseInWarmReader("x", [](const fs::path&) -> std::string {
+            throw std::runtime_error("bad header");
+        });
+        ADD_FAILURE() << "no error";
+    } catch (const IoError& e) {
+        EXPECT_STREQ(e.what(), "cannot read x: bad header");
+    }
+    const Parses after = warmParses();
+    EXPECT_NE(after.pid, before.pid);
+    EXPECT_EQ(after.count, 1);
+    try {
+        parseInWarmReader("/data/frame.vdb", [](const fs::path&) -> std::string {
+            std::raise(SIGSEGV);
+            return "";
+        });
+        ADD_FAILURE() << "no error";
+    } catch (const IoError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("cannot read /data/frame.vdb: the file is damaged: its reader", 0), 0u)
+            << e.what();
+    }
+    const Parses last = warmParses();
+    EXPECT_NE(last.pid, after.pid);
+    EXPECT_EQ(last.count, 1);
+}
+
+/// Hangs where @p marker does not exist yet, after creating it; answers where it does.
+std::string hangOnce(const fs::path& marker) {
+    if (!fs::exists(marker)) {
+        std::ofstream(marker) << "hung";
+        for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
+    }
+    return "answered";
+}
+
+TEST(WarmReader, AHungReadIsStoppedAtItsLimitAndReadAgain) {
+    const fs::path marker = fs::temp_directory_path() /
+                            ("globular_warm_hang_" + std::to_string(::getpid()));
+    fs::remove(marker);
+    const Parses before = warmParses();
+    const auto start = std::chrono::steady_clock::now();
+    EXPECT_EQ(parseInWarmReader(marker, hangOnce, 1.0), "answered");
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10));
+    EXPECT_TRUE(fs::exists(marker));  // the warm reader did hang on it
+    fs::remove(marker);
+    EXPECT_NE(warmParses().pid, before.pid);
+}
+
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kAddressSanitizer = true;
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+
+/// Where an allocation escapes to, so that the compiler keeps it.
+void* volatile gReservation = nullptr;
+
+/// Asks for @p bytes of address space without touching them.
+std::string reserve(std::size_t bytes) {
+    const std::unique_ptr<char[]> reserved(new char[bytes]);
+    gReservation = reserved.get();
+    return "reserved";
+}
+
+std::string reserveAGibibyte(const fs::path&) { return reserve(std::size_t(1) << 30); }
+std::string reserve200Mebibytes(const fs::path&) { return reserve(std::size_t(200) << 20); }
+
+// Each read may take what a forked reader may (256 MiB for a file this small) and no
+// more, however many reads came before it.
+TEST(WarmReader, EachReadHasTheForkedReadersMemoryLimit) {
+    if (kAddressSanitizer) GTEST_SKIP() << "no memory limit under AddressSanitizer";
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(parseInWarmReader("x", reserve200Mebibytes), "reserved");
+    try {
+        parseInWarmReader("x", reserveAGibibyte);
+        ADD_FAILURE() << "no error";
+    } catch (const IoError& e) {
+        EXPECT_NE(std::string(e.what()).find("more than 256 MiB"), std::string::npos)
+            << e.what();
+    }
 }
 
 /// A library's lock, which the parse below takes.
