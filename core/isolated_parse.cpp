@@ -163,6 +163,8 @@ ChildLimits readerLimits(const fs::path& path, ChildLimits limits) {
     return limits;
 }
 
+bool addressSpaceCanBeLimited() { return !kAddressSanitizer; }
+
 void limitAddressSpaceGrowth(uint64_t bytes) {
     rlimit r{};
     if (kAddressSanitizer || ::getrlimit(RLIMIT_AS, &r) != 0) return;

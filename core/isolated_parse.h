@@ -24,6 +24,10 @@ double readerSeconds(const std::filesystem::path& path);
 /// @p limits with each 0 replaced by its default for a reader of @p path.
 ChildLimits readerLimits(const std::filesystem::path& path, ChildLimits limits = {});
 
+/// False in a build with AddressSanitizer, which reserves terabytes of shadow: there no
+/// reader's address space is limited.
+bool addressSpaceCanBeLimited();
+
 /// Lets this process's address space grow by at most @p bytes from now on (RLIMIT_AS's
 /// soft limit; 0, or a build with AddressSanitizer, which reserves terabytes of shadow:
 /// no limit), so that a hostile size field fails as bad_alloc instead of taking the

@@ -367,22 +367,23 @@ TEST(ReaderHelper, OneHelperForksEveryReader) {
     EXPECT_EQ(parseInHelperChild("y", readersParent), std::to_string(helper));
 }
 
-TEST(ReaderHelper, AnswersAndErrorsAreParseInChilds) {
-    EXPECT_EQ(parseInHelperChild("x", [](const fs::path&) { return std::string("a\0b", 3); }),
-              std::string("a\0b", 3));
-    EXPECT_EQ(parseInHelperChild("x", [](const fs::path&) { return std::string(5 << 20, 'g'); })
-                  .size(),
-              5u << 20);
+/// A way of reading a file in another process: parseInHelperChild or parseInWarmReader.
+using Reader = std::string (*)(const fs::path&, PathParser);
+
+/// A parse that throws is parseInChild's error.
+void expectTheParsersError(Reader read) {
     try {
-        parseInHelperChild("x", [](const fs::path&) -> std::string {
-            throw std::runtime_error("bad header");
-        });
+        read("x", [](const fs::path&) -> std::string { throw std::runtime_error("bad header"); });
         ADD_FAILURE() << "no error";
     } catch (const IoError& e) {
         EXPECT_STREQ(e.what(), "cannot read x: bad header");
     }
+}
+
+/// A parse that crashes is an error naming the file.
+void expectACrashNamingTheFile(Reader read) {
     try {
-        parseInHelperChild("/data/frame.vdb", [](const fs::path&) -> std::string {
+        read("/data/frame.vdb", [](const fs::path&) -> std::string {
             std::raise(SIGSEGV);
             return "";
         });
@@ -391,6 +392,16 @@ TEST(ReaderHelper, AnswersAndErrorsAreParseInChilds) {
         EXPECT_EQ(std::string(e.what()).rfind("cannot read /data/frame.vdb: the file is damaged: its reader", 0), 0u)
             << e.what();
     }
+}
+
+TEST(ReaderHelper, AnswersAndErrorsAreParseInChilds) {
+    EXPECT_EQ(parseInHelperChild("x", [](const fs::path&) { return std::string("a\0b", 3); }),
+              std::string("a\0b", 3));
+    EXPECT_EQ(parseInHelperChild("x", [](const fs::path&) { return std::string(5 << 20, 'g'); })
+                  .size(),
+              5u << 20);
+    expectTheParsersError(parseInHelperChild);
+    expectACrashNamingTheFile(parseInHelperChild);
     // The helper survived its reader's crash.
     EXPECT_EQ(parseInHelperChild("x", [](const fs::path& p) { return p.string(); }), "x");
 }
@@ -440,28 +451,15 @@ TEST(WarmReader, OneProcessReadsFileAfterFile) {
 // Whatever the warm reader fails on is read again by a reader forked for it, whose answer
 // or error counts, and the warm reader is not used again: the next one has read nothing.
 TEST(WarmReader, AFailedReadIsAnsweredByAFreshReaderAndEndsTheWarmOne) {
+    const Reader warm = [](const fs::path& path, PathParser parse) {
+        return parseInWarmReader(path, parse);
+    };
     const Parses before = warmParses();
-    try {
-        parseInWarmReader("x", [](const fs::path&) -> std::string {
-            throw std::runtime_error("bad header");
-        });
-        ADD_FAILURE() << "no error";
-    } catch (const IoError& e) {
-        EXPECT_STREQ(e.what(), "cannot read x: bad header");
-    }
+    expectTheParsersError(warm);
     const Parses after = warmParses();
     EXPECT_NE(after.pid, before.pid);
     EXPECT_EQ(after.count, 1);
-    try {
-        parseInWarmReader("/data/frame.vdb", [](const fs::path&) -> std::string {
-            std::raise(SIGSEGV);
-            return "";
-        });
-        ADD_FAILURE() << "no error";
-    } catch (const IoError& e) {
-        EXPECT_EQ(std::string(e.what()).rfind("cannot read /data/frame.vdb: the file is damaged: its reader", 0), 0u)
-            << e.what();
-    }
+    expectACrashNamingTheFile(warm);
     const Parses last = warmParses();
     EXPECT_NE(last.pid, after.pid);
     EXPECT_EQ(last.count, 1);
@@ -489,18 +487,6 @@ TEST(WarmReader, AHungReadIsStoppedAtItsLimitAndReadAgain) {
     EXPECT_NE(warmParses().pid, before.pid);
 }
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAddressSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAddressSanitizer = true;
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
-
 /// Where an allocation escapes to, so that the compiler keeps it.
 void* volatile gReservation = nullptr;
 
@@ -517,7 +503,7 @@ std::string reserve200Mebibytes(const fs::path&) { return reserve(std::size_t(20
 // Each read may take what a forked reader may (256 MiB for a file this small) and no
 // more, however many reads came before it.
 TEST(WarmReader, EachReadHasTheForkedReadersMemoryLimit) {
-    if (kAddressSanitizer) GTEST_SKIP() << "no memory limit under AddressSanitizer";
+    if (!addressSpaceCanBeLimited()) GTEST_SKIP() << "no memory limit under AddressSanitizer";
     for (int k = 0; k < 3; ++k) EXPECT_EQ(parseInWarmReader("x", reserve200Mebibytes), "reserved");
     try {
         parseInWarmReader("x", reserveAGibibyte);
