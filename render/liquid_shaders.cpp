@@ -32,8 +32,9 @@ float schlick(float cosine, float ior) {
 
 // The liquid seen along `dir` (unit, from the eye) where the ray enters it at `p`, normal
 // `n` (unit, towards the eye); `depth`: the eye ray's length inside it; `sigma`:
-// absorption per world unit. Returns premultiplied colour and coverage.
-vec4 liquidShade(vec3 p, vec3 n, vec3 dir, float depth, vec3 sigma) {
+// absorption per world unit; `keyVisibility`: the key light's there, its glint's shadow
+// (keyLightVisibility). Returns premultiplied colour and coverage.
+vec4 liquidShade(vec3 p, vec3 n, vec3 dir, float depth, vec3 sigma, float keyVisibility) {
     float cosine = clamp(-dot(dir, n), 0.0, 1.0);
     float fresnel = schlick(cosine, uIor);
     vec3 r = refract(dir, n, 1.0 / uIor);
@@ -67,7 +68,7 @@ vec4 liquidShade(vec3 p, vec3 n, vec3 dir, float depth, vec3 sigma) {
         if (ndl <= 0.0) continue;
         vec3 h = normalize(uLightToward[i] - dir);
         float lobe = (kShininess + 8.0) / (8.0 * PI_LIQUID) * pow(max(dot(n, h), 0.0), kShininess);
-        float visible = i == 0 ? keyLightVisibility(p, n) : 1.0;
+        float visible = i == 0 ? keyVisibility : 1.0;
         color += visible * uLightRadiance[i] * schlick(dot(h, -dir), uIor) * lobe * ndl;
     }
     float through = (1.0 - fresnel) * dot(transmittance, vec3(1.0 / 3.0));
@@ -285,7 +286,8 @@ void main() {
     // fades into what lies behind: the smoothed depth is least reliable there, and the
     // edge is soft instead of stair-stepped.
     float edge = smoothstep(0.0, uEdgeThickness, depths.a);  // the blurred chords: soft
-    fragColor = mix(textureLod(uBehind, uv, 0.0), liquidShade(at, n, dir, thickness, sigma), edge);
+    fragColor = mix(textureLod(uBehind, uv, 0.0),
+                    liquidShade(at, n, dir, thickness, sigma, keyLightVisibility(at, n)), edge);
     vec4 clip = uViewProj * vec4(at, 1.0);
     gl_FragDepth = 0.5 + 0.5 * clip.z / clip.w;
     writePasses(at, n, texelFetch(uVelocity, p, 0).xyz, 1.0);
@@ -328,17 +330,20 @@ void main() {
     int count = pixelTriangles(ids, seen);
     if (count == 0) discard;
     float depth = texelFetch(uThickness, ivec2(gl_FragCoord.xy), 0).r;
+    // The triangle most samples saw: the compositing passes show it, and the key light's
+    // shadow on the glints is looked up there, once for all the pixel's triangles. Its
+    // filter (eight bilinear taps) was a third of this pass, run for each triangle as
+    // often as the most any pixel of a block sees; the glints are a few pixels wide, and
+    // the pour's frames came out byte-identical (docs/performance.md, twentieth pass).
+    TriangleHit passes = triangleHit(ids[mostSeen(seen, count)]);
+    float keyVisibility = keyLightVisibility(passes.world, passes.normal);
     vec4 color = vec4(0.0);
-    int covered = 0, most = 0;
-    TriangleHit passes;
+    int covered = 0;
     for (int i = 0; i < count; ++i) {
         TriangleHit hit = triangleHit(ids[i]);
-        color += float(seen[i]) * liquidShade(hit.world, hit.normal, hit.dir, depth, uMeshSigma);
+        color += float(seen[i]) *
+                 liquidShade(hit.world, hit.normal, hit.dir, depth, uMeshSigma, keyVisibility);
         covered += seen[i];
-        if (seen[i] > most) {
-            most = seen[i];
-            passes = hit;
-        }
     }
     fragColor = color / float(covered);
     writePasses(passes.world, passes.normal, vec3(0.0), 1.0);

@@ -84,6 +84,16 @@ int pixelTriangles(out uint ids[SAMPLES], out int seen[SAMPLES]) {
     return count;
 }
 
+// Which of the pixel's @p count triangles the most of its samples saw (the first of
+// those tied).
+int mostSeen(int seen[SAMPLES], int count) {
+    int best = 0;
+    for (int i = 1; i < count; ++i) {
+        if (seen[i] > seen[best]) best = i;
+    }
+    return best;
+}
+
 // Triangle @p id (1 + its index) where the pixel centre's eye ray meets its plane (Moller
 // and Trumbore), kept within the triangle. That is what the rasteriser interpolates, but
 // for the clamp: it keeps a sliver seen edge-on, whose plane the ray meets far away, from

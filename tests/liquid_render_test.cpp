@@ -138,6 +138,30 @@ TEST(LiquidRender, RenderersFirstFrameHasTheKeyLightsGlint) {
     EXPECT_TRUE(first.rgba == second.rgba) << "the same frame drawn twice must match";
 }
 
+TEST(LiquidRender, GlintInAPropsShadowIsDark) {
+    // The glint of the test above, with a box between it and the key light: the shadow map
+    // must reach the glint (the liquid's shading looks its visibility up once per pixel).
+    constexpr int kW = 161, kH = 121;
+    const BoxMesh slab({-3, 0, -3}, {3, 1, 3});
+    const Vec3 eye{0, 5, 8}, top{0, 1, 0};
+    const Vec3 view = normalized(top - eye);
+    FrameSetup s = liquidSetup(eye, top, {0.2, 0.1, 0.05});
+    LightSettings key;
+    key.direction = -1.0 * Vec3{view.x, -view.y, view.z};
+    s.lights = {key};
+    const Vec3 blocker = top - 3.0 * key.direction;  // towards the light, behind the top as seen
+    const BoxMesh box(blocker - Vec3{0.6, 0.6, 0.6}, blocker + Vec3{0.6, 0.6, 0.6});
+    Renderer renderer(kW, kH, 4);
+    renderer.drawMesh(slab.view(), s);
+    const double lit = luminance(renderer.lastFrame(), kW / 2, kH / 2);
+    const double beside = luminance(renderer.lastFrame(), kW / 2 + 8, kH / 2);
+    ASSERT_GT(lit, beside + 0.2) << "the glint must stand out";
+    s.props = {{box.mesh(), false}};
+    renderer.drawMesh(slab.view(), s);
+    const double shadowed = luminance(renderer.lastFrame(), kW / 2, kH / 2);
+    EXPECT_LT(shadowed, beside + 0.05 * (lit - beside)) << "lit " << lit << ", beside " << beside;
+}
+
 TEST(LiquidRender, AbsorbingSlabTransmitsExpMinusSigmaD) {
     constexpr int kW = 81, kH = 61;  // odd: the centre pixel's ray goes to the target
     const double height = 2;
