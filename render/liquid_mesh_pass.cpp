@@ -33,12 +33,7 @@ void LiquidMeshPass::upload(const MeshView& mesh) {
 }
 
 void LiquidMeshPass::drawShadow(const FrameUniforms& f) const {
-    if (mIndexCount == 0) return;
-    glUseProgram(mShadow.id());
-    setMat4(mShadow, "uViewProj", f.lightViewProj);
-    glBindVertexArray(mVertexArray.id());
-    glDrawElements(GL_TRIANGLES, GLsizei(mIndexCount), GL_UNSIGNED_INT, nullptr);
-    glBindVertexArray(0);
+    drawShadowFaces(mShadow, f, mVertexArray, mIndexCount, mClosed);
 }
 
 void LiquidMeshPass::draw(const FrameUniforms& f, const FrameTarget& target,

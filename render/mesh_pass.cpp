@@ -69,13 +69,24 @@ void MeshPass::upload(const MeshView& mesh) {
     gl::checkErrors("uploading the mesh");
 }
 
-void MeshPass::drawShadow(const FrameUniforms& f) const {
-    if (mIndexCount == 0) return;
-    glUseProgram(mShadowProgram.id());
-    setMat4(mShadowProgram, "uViewProj", f.lightViewProj);
-    glBindVertexArray(mVertexArray.id());
-    glDrawElements(GL_TRIANGLES, GLsizei(mIndexCount), GL_UNSIGNED_INT, nullptr);
+void drawShadowFaces(const gl::Program& program, const FrameUniforms& f,
+                     const gl::VertexArray& vertexArray, std::size_t indexCount, bool closed) {
+    if (indexCount == 0) return;
+    glUseProgram(program.id());
+    setMat4(program, "uViewProj", f.lightViewProj);
+    if (closed) {
+        glFrontFace(GL_CCW);
+        glCullFace(GL_BACK);
+        glEnable(GL_CULL_FACE);
+    }
+    glBindVertexArray(vertexArray.id());
+    glDrawElements(GL_TRIANGLES, GLsizei(indexCount), GL_UNSIGNED_INT, nullptr);
     glBindVertexArray(0);
+    glDisable(GL_CULL_FACE);
+}
+
+void MeshPass::drawShadow(const FrameUniforms& f, Cull cull) const {
+    drawShadowFaces(mShadowProgram, f, mVertexArray, mIndexCount, cull == Cull::Back);
 }
 
 void MeshPass::draw(const FrameUniforms& f, const FrameTarget& target, Cull cull) const {

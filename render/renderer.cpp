@@ -310,7 +310,7 @@ struct Renderer::Impl {
             shadowMap.beginDrawing(f.shadowMapSize);
             content.shadow(f);
             for (std::size_t k = 0; k < s.props.size(); ++k) {
-                if (!s.props[k].seeThrough) props[k].drawShadow(f);
+                if (!s.props[k].seeThrough) props[k].drawShadow(f, detail::MeshPass::Cull::Back);
             }
         }
         target.bindAndClear(srgbToLinear(s.render.background), s.render.transparent ? 0 : 1);
@@ -444,7 +444,10 @@ void Renderer::renderMesh(const MeshView& mesh, const FrameSetup& setup) {
         const MeshView& mesh;
         bool spheres() const { return false; }
         void prepare(const FrameUniforms&) { pass.upload(mesh); }
-        void shadow(const FrameUniforms& f) { pass.drawShadow(f); }
+        void shadow(const FrameUniforms& f) {
+            using Cull = detail::MeshPass::Cull;
+            pass.drawShadow(f, mesh.closed ? Cull::Back : Cull::None);
+        }
         void draw(const FrameUniforms& f) {
             using Cull = detail::MeshPass::Cull;
             pass.draw(f, target, mesh.closed ? Cull::Back : Cull::None);
