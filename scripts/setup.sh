@@ -16,7 +16,7 @@ packages=(
     build-essential cmake ninja-build pkg-config
     libopenvdb-dev libopenvdb-tools libboost-iostreams-dev libblosc-dev
     libtbb-dev libeigen3-dev libjemalloc-dev
-    libosmesa6-dev libegl-dev libegl-mesa0 libpng-dev libopenexr-dev openexr
+    libosmesa6-dev libegl-dev libegl-mesa0 libpng-dev zlib1g-dev libopenexr-dev openexr
     libtomlplusplus-dev libcli11-dev
     libgtest-dev libgmock-dev libbenchmark-dev
     gnuplot-nox
