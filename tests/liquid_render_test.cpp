@@ -114,51 +114,57 @@ TEST(LiquidRender, ClearSlabShiftsTheCheckerAsSnellsLawPredicts) {
     }
 }
 
+/// A 6x6 slab of liquid, 1 high, seen from above and in front, with the key light mirrored
+/// about the slab's top at its centre: its glint lies there, in the image's centre.
+struct GlintScene {
+    static constexpr int kW = 161, kH = 121;
+    BoxMesh slab{{-3, 0, -3}, {3, 1, 3}};
+    Vec3 top{0, 1, 0};
+    FrameSetup setup;
+    GlintScene() {
+        const Vec3 eye{0, 5, 8};
+        const Vec3 view = normalized(top - eye);
+        setup = liquidSetup(eye, top, {0.2, 0.1, 0.05});
+        LightSettings key;
+        key.direction = -1.0 * Vec3{view.x, -view.y, view.z};  // down to the top, mirrored
+        setup.lights = {key};
+    }
+    /// Luminance at the glint and 8 pixels beside it.
+    static double glint(const LinearFrame& f) { return luminance(f, kW / 2, kH / 2); }
+    static double beside(const LinearFrame& f) { return luminance(f, kW / 2 + 8, kH / 2); }
+};
+
 TEST(LiquidRender, RenderersFirstFrameHasTheKeyLightsGlint) {
-    // The key light mirrored about the slab's top at its centre: its glint lies there, in
-    // the image's centre, where the key light's visibility (the shadow map) lets it
-    // through. The passes create their textures on a renderer's first frame; that once
-    // unbound the shadow map, and the first frame of every range came out without glints.
-    constexpr int kW = 161, kH = 121;
-    const BoxMesh slab({-3, 0, -3}, {3, 1, 3});
-    const Vec3 eye{0, 5, 8}, top{0, 1, 0};
-    const Vec3 view = normalized(top - eye);
-    FrameSetup s = liquidSetup(eye, top, {0.2, 0.1, 0.05});
-    LightSettings key;
-    key.direction = -1.0 * Vec3{view.x, -view.y, view.z};  // travels down to the top, mirrored
-    s.lights = {key};
-    Renderer renderer(kW, kH, 4);
-    renderer.drawMesh(slab.view(), s);
+    // The glint shows where the key light's visibility (the shadow map) lets it through.
+    // The passes create their textures on a renderer's first frame; that once unbound the
+    // shadow map, and the first frame of every range came out without glints.
+    const GlintScene scene;
+    Renderer renderer(GlintScene::kW, GlintScene::kH, 4);
+    renderer.drawMesh(scene.slab.view(), scene.setup);
     const LinearFrame first = renderer.lastFrame();
-    renderer.drawMesh(slab.view(), s);
+    renderer.drawMesh(scene.slab.view(), scene.setup);
     const LinearFrame& second = renderer.lastFrame();
-    const double glint = luminance(second, kW / 2, kH / 2);
-    ASSERT_GT(glint, luminance(second, kW / 2 + 8, kH / 2) + 0.2) << "the glint must stand out";
-    EXPECT_NEAR(luminance(first, kW / 2, kH / 2), glint, 1e-6);
+    const double glint = GlintScene::glint(second);
+    ASSERT_GT(glint, GlintScene::beside(second) + 0.2) << "the glint must stand out";
+    EXPECT_NEAR(GlintScene::glint(first), glint, 1e-6);
     EXPECT_TRUE(first.rgba == second.rgba) << "the same frame drawn twice must match";
 }
 
 TEST(LiquidRender, GlintInAPropsShadowIsDark) {
-    // The glint of the test above, with a box between it and the key light: the shadow map
-    // must reach the glint (the liquid's shading looks its visibility up once per pixel).
-    constexpr int kW = 161, kH = 121;
-    const BoxMesh slab({-3, 0, -3}, {3, 1, 3});
-    const Vec3 eye{0, 5, 8}, top{0, 1, 0};
-    const Vec3 view = normalized(top - eye);
-    FrameSetup s = liquidSetup(eye, top, {0.2, 0.1, 0.05});
-    LightSettings key;
-    key.direction = -1.0 * Vec3{view.x, -view.y, view.z};
-    s.lights = {key};
-    const Vec3 blocker = top - 3.0 * key.direction;  // towards the light, behind the top as seen
-    const BoxMesh box(blocker - Vec3{0.6, 0.6, 0.6}, blocker + Vec3{0.6, 0.6, 0.6});
-    Renderer renderer(kW, kH, 4);
-    renderer.drawMesh(slab.view(), s);
-    const double lit = luminance(renderer.lastFrame(), kW / 2, kH / 2);
-    const double beside = luminance(renderer.lastFrame(), kW / 2 + 8, kH / 2);
+    // A box between the glint and the key light: the shadow map must reach the glint (the
+    // liquid's shading looks its visibility up once per pixel).
+    GlintScene scene;
+    Renderer renderer(GlintScene::kW, GlintScene::kH, 4);
+    renderer.drawMesh(scene.slab.view(), scene.setup);
+    const double lit = GlintScene::glint(renderer.lastFrame());
+    const double beside = GlintScene::beside(renderer.lastFrame());
     ASSERT_GT(lit, beside + 0.2) << "the glint must stand out";
-    s.props = {{box.mesh(), false}};
-    renderer.drawMesh(slab.view(), s);
-    const double shadowed = luminance(renderer.lastFrame(), kW / 2, kH / 2);
+    // Towards the light from the top, behind it as the camera sees it.
+    const Vec3 blocker = scene.top - 3.0 * scene.setup.lights.front().direction;
+    const BoxMesh box(blocker - Vec3{0.6, 0.6, 0.6}, blocker + Vec3{0.6, 0.6, 0.6});
+    scene.setup.props = {{box.mesh(), false}};
+    renderer.drawMesh(scene.slab.view(), scene.setup);
+    const double shadowed = GlintScene::glint(renderer.lastFrame());
     EXPECT_LT(shadowed, beside + 0.05 * (lit - beside)) << "lit " << lit << ", beside " << beside;
 }
 
