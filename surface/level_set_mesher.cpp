@@ -1,5 +1,10 @@
 // Meshing a level set: volumeToMesh, quads split into triangles, gradient normals.
 #include <openvdb/tools/Interpolation.h>
+// volumeToMesh is instantiated here, with this project's flags, instead of called in the
+// library's explicit instantiation: the pour's adaptive mesh (BM_MeshAdaptive) takes
+// 1.4-1.6x less time so, and the meshes are byte-identical. The templates are OpenVDB's
+// own, from the same headers; only where they are compiled changes.
+#undef OPENVDB_USE_EXPLICIT_INSTANTIATION
 #include <openvdb/tools/VolumeToMesh.h>
 #include <tbb/parallel_for.h>
 
