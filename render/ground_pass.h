@@ -3,8 +3,11 @@
 // box-filtered checker, lit and shadowed like everything else, that fades into the
 // background with distance so it reads as an endless studio floor.
 
+#include <optional>
+
 #include "frame_uniforms.h"
 #include "gl_objects.h"
+#include "ground_shadow_region.h"
 
 namespace globular::detail {
 
@@ -23,10 +26,19 @@ struct GroundLook {
 class GroundPass {
   public:
     GroundPass();
-    void draw(const FrameUniforms& frame, const GroundLook& look) const;
+    /// @param shadowRegion where the key light's shadow can fall
+    /// (groundShadowRegion()): only there is the ground drawn with the shadow filter, the
+    /// rest in pieces that share its corners, so no pixel is missed or drawn twice.
+    /// std::nullopt: with the filter everywhere.
+    void draw(const FrameUniforms& frame, const GroundLook& look,
+              const std::optional<GroundRect>& shadowRegion) const;
 
   private:
-    gl::Program mProgram;
+    void drawTriangles(const gl::Program& program, const FrameUniforms& frame,
+                       const GroundLook& look, const float* corners, int cornerCount) const;
+
+    gl::Program mShadowed;
+    gl::Program mLit;  ///< the same shading without the key light's shadow filter
     gl::VertexArray mVertexArray;
     gl::Buffer mCorners;
 };

@@ -306,11 +306,17 @@ struct Renderer::Impl {
         glDepthFunc(GL_LESS);
         glDisable(GL_CULL_FACE);
         glDisable(GL_BLEND);
+        std::optional<detail::GroundRect> groundShadow = detail::GroundRect{};  // none
         if (f.shadowed) {
             shadowMap.beginDrawing(f.shadowMapSize);
             content.shadow(f);
             for (std::size_t k = 0; k < s.props.size(); ++k) {
                 if (!s.props[k].seeThrough) props[k].drawShadow(f, detail::MeshPass::Cull::Back);
+            }
+            // The ground's shadow filter was a fifth of a liquid frame, over a floor mostly
+            // out of every shadow's reach (docs/performance.md, twenty-first pass).
+            if (s.render.ground) {
+                groundShadow = detail::groundShadowRegion(f, shadowMap.drawnTexels(), s.groundHeight);
             }
         }
         target.bindAndClear(srgbToLinear(s.render.background), s.render.transparent ? 0 : 1);
@@ -322,7 +328,7 @@ struct Renderer::Impl {
             using Cull = detail::MeshPass::Cull;
             props[k].draw(grey, target, s.props[k].seeThrough ? Cull::None : Cull::Back);
         }
-        if (s.render.ground) ground.draw(f, look);
+        if (s.render.ground) ground.draw(f, look, groundShadow);
         // A liquid is drawn after the occlusion: without props the depth buffer then holds
         // the ground alone, a plane, which nothing occludes (every tap lies above it), so
         // the pass would leave the frame as it was (without it 238 of the pour's 240 frames

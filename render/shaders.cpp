@@ -134,6 +134,11 @@ float interleavedGradientNoise(vec2 pixel) {
 }
 
 float keyLightVisibility(vec3 p, vec3 n) {
+#ifdef KEY_LIGHT_UNSHADOWED
+    // Drawn only where no caster's shadow reaches (ground_shadow_region.h): there every
+    // tap below compares against the cleared map, and the filter returns exactly 1.
+    return 1.0;
+#else
     if (uShadowed == 0) return 1.0;
     // Normal offset: sample a little off the surface so it does not shadow itself.
     vec4 c = uLightViewProj * vec4(p + n * ((1.5 + 0.5 * uShadowSoftness) * uShadowTexel), 1.0);
@@ -156,6 +161,7 @@ float keyLightVisibility(vec3 p, vec3 n) {
         sum += texture(uShadowMap, vec3(s.xy + offset, ref));
     }
     return sum / 8.0;
+#endif
 }
 
 // The compositing passes (frame_target.h), weighted by the colour's alpha so the resolve
@@ -228,8 +234,9 @@ vec3 shadeMaterial(vec3 p, vec3 n, vec3 baseColor, float material) {
 }  // namespace
 
 std::string version() { return kVersion; }
-std::string fragment(const std::string& body) {
-    return version() + kColorLibrary + kEnvironmentLibrary + kBrdfLibrary + kShadingLibrary + body;
+std::string fragment(const std::string& body) { return fragment(body, ""); }
+std::string fragment(const std::string& body, const std::string& defines) {
+    return version() + defines + kColorLibrary + kEnvironmentLibrary + kBrdfLibrary + kShadingLibrary + body;
 }
 std::string vertex(const std::string& body) { return version() + kColorLibrary + body; }
 
@@ -301,7 +308,7 @@ void main() {
 // A box-filtered checker (exact area average over the pixel's footprint), so the far
 // ground greys out smoothly instead of shimmering, fading into the background.
 // \see Inigo Quilez, "Filtering procedurals: checkerboard" (iquilezles.org).
-std::string groundFragment() {
+std::string groundFragment(bool keyLightShadowed) {
     return fragment(R"(
 in vec3 vWorld;
 uniform vec3 uGroundColor;   // linear
@@ -331,7 +338,8 @@ void main() {
     fragColor = vec4(mix(color, uBackground * uBackgroundAlpha, fade), alpha);
     writePasses(vWorld, vec3(0.0, 1.0, 0.0), vec3(0.0), alpha);
 }
-)");
+)",
+                    keyLightShadowed ? "" : "#define KEY_LIGHT_UNSHADOWED\n");
 }
 
 }  // namespace globular::shaders

@@ -12,6 +12,8 @@ inline constexpr int kMaxLights = 8;
 std::string version();
 /// @p body after the version, the colour ramp and the lighting functions (shade()).
 std::string fragment(const std::string& body);
+/// As above with @p defines ("#define NAME\n" lines) before the libraries.
+std::string fragment(const std::string& body, const std::string& defines);
 /// @p body after the version and the colour ramp (albedoFor()).
 std::string vertex(const std::string& body);
 
@@ -19,7 +21,9 @@ std::string vertex(const std::string& body);
 std::string meshFragment(int samples);
 std::string depthOnlyFragment();
 std::string groundVertex();
-std::string groundFragment();
+/// @param keyLightShadowed false: the key light's shadow filter left out (visibility 1),
+/// for the ground outside the casters' shadow region (ground_shadow_region.h).
+std::string groundFragment(bool keyLightShadowed);
 
 // triangle_shaders.cpp: a mesh's deferred shading (triangle_visibility.h)
 /// Positions (attribute 0) through uViewProj: a mesh's faces in the camera's view or, with

@@ -51,6 +51,33 @@ void ShadowMap::beginDrawing(int size) {
     glClear(GL_DEPTH_BUFFER_BIT);
 }
 
+TexelRect ShadowMap::drawnTexels() {
+    mReadBack.resize(std::size_t(mSize) * std::size_t(mSize));
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, mFramebuffer.id());
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, mSize, mSize, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, mReadBack.data());
+    gl::checkErrors("reading the shadow map back");
+    // The cleared far plane reads as the largest value; anything drawn is nearer.
+    constexpr uint32_t kFar = 0xffffffffu;
+    TexelRect drawn;
+    drawn.x0 = mSize;
+    for (int y = 0; y < mSize; ++y) {
+        const uint32_t* row = mReadBack.data() + std::size_t(y) * std::size_t(mSize);
+        uint32_t nearest = kFar;
+        for (int x = 0; x < mSize; ++x) nearest = std::min(nearest, row[x]);
+        if (nearest == kFar) continue;
+        int first = 0, last = mSize - 1;
+        while (row[first] == kFar) ++first;
+        while (row[last] == kFar) --last;
+        if (drawn.y1 < drawn.y0) drawn.y0 = y;
+        drawn.y1 = y;
+        drawn.x0 = std::min(drawn.x0, first);
+        drawn.x1 = std::max(drawn.x1, last);
+    }
+    if (drawn.y1 < drawn.y0) return {};
+    return drawn;
+}
+
 void ShadowMap::bindForSampling() const {
     glActiveTexture(GL_TEXTURE0 + kShadowMapUnit);
     glBindTexture(GL_TEXTURE_2D, mDepth.id());

@@ -2,6 +2,9 @@
 // Internal to render/: the key light's depth map (an orthographic view along the light
 // that covers the content), sampled with hardware depth comparison and linear filtering.
 
+#include <cstdint>
+#include <vector>
+
 #include "gl_objects.h"
 
 namespace globular::detail {
@@ -11,6 +14,12 @@ namespace globular::detail {
 /// unbound for the first frame a renderer drew (the liquid's glints missing from the first
 /// frame of every range).
 inline constexpr int kShadowMapUnit = 14;
+
+/// Texels [x0, x1] x [y0, y1] of the map; empty when x1 < x0.
+struct TexelRect {
+    int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+    bool empty() const { return x1 < x0 || y1 < y0; }
+};
 
 class ShadowMap {
   public:
@@ -24,6 +33,9 @@ class ShadowMap {
     /// Binds the map, @p size texels per side, as the render target; clears it to the
     /// far plane.
     void beginDrawing(int size);
+    /// The texels the casters drawn since beginDrawing() wrote, while the map is still
+    /// bound as the target. Reads the map back, so it waits for them to be drawn.
+    TexelRect drawnTexels();
     /// Binds the map to kShadowMapUnit for the shading passes; unit 0 is left active.
     void bindForSampling() const;
     int size() const { return mSize; }
@@ -35,6 +47,7 @@ class ShadowMap {
     int mSize = 0;
     gl::Texture mDepth;
     gl::Framebuffer mFramebuffer;
+    std::vector<uint32_t> mReadBack;
 };
 
 }  // namespace globular::detail

@@ -313,6 +313,41 @@ TEST(Renderer, KeyLightCastsAShadowOnTheGround) {
     EXPECT_NEAR(rgb(image, lx, ly)[0], srgbByte(ground.x), 3);
 }
 
+TEST(Renderer, ALowLightsLongShadowReachesItsEnd) {
+    // The ground is drawn with the shadow filter only where a caster's shadow can fall
+    // (ground_shadow_region.h). A low sun throws the sphere's shadow far from it: all of
+    // that must still be dark, and the ground beyond it lit.
+    Renderer renderer(kWidth, kHeight, 4);
+    FrameSetup setup;
+    setup.camera = {{-5, 14, 16}, {-5, 0, 0}, 40};
+    LightSettings sun;
+    sun.direction = normalized(Vec3{-1, -0.35, 0});  // low, from +x: the shadow falls to -x
+    sun.color = {1, 1, 1};
+    setup.lights = {sun};
+    setup.render.checkerSize = 1000;
+    setup.render.environmentIntensity = 0;
+    setup.render.specular = 0;
+    setup.render.ambientOcclusion = 0;
+    const Globules g = oneSphere({0, 3, 0}, 1);
+    Bounds3 content;
+    content.add(Vec3{-4, 0, -4});
+    content.add(Vec3{4, 4, 4});
+    setup.content = content;
+    const Image image = renderer.drawSpheres(g, setup);
+    const Mat4 viewProj = perspective(40, double(kWidth) / kHeight, 0.1, 100) *
+                          lookAt(setup.camera.position, setup.camera.target);
+    auto pixelOf = [&](Vec3 p) {
+        const Vec4 c = transformPoint(viewProj, p);
+        return std::pair<int, int>{int((c.x / c.w + 1) / 2 * kWidth),
+                                   int((1 - c.y / c.w) / 2 * kHeight)};
+    };
+    // The sphere's centre lands on the ground 3 / 0.35 = 8.6 units along -x.
+    const auto [sx, sy] = pixelOf({-3.0 / 0.35, 0, 0});
+    const auto [lx, ly] = pixelOf({-3.0 / 0.35 - 5, 0, 0});  // past the shadow's end
+    expectColor(image, sx, sy, {0, 0, 0}, 1);
+    EXPECT_GT(rgb(image, lx, ly)[0], 40);
+}
+
 TEST(Renderer, MeshCoversItsProjection) {
     Renderer renderer(kWidth, kHeight, 4);
     // A square of side 2 facing the camera at z = 0: at distance 10 with 90 degrees it
