@@ -62,30 +62,23 @@ void BM_LevelSetRebuild(benchmark::State& state) {
 }
 BENCHMARK(BM_LevelSetRebuild)->Apply(sizes);
 
-void BM_Mesh(benchmark::State& state) {
+void meshAtAdaptivity(benchmark::State& state, double adaptivity) {
     const Globules g = benchPuddle(std::size_t(state.range(0)));
     const auto field = splatMetaballs(g, kSettings.metaballKernel(), kSettings.influence,
                                       resolveVoxelSize(kSettings, g));
     const auto levelSet = fieldToLevelSet(*field, kSettings.isoValue, kSettings.bandWidth);
     for (auto _ : state) {
-        const TriangleMesh mesh = meshLevelSet(*levelSet, kSettings.adaptivity);
+        const TriangleMesh mesh = meshLevelSet(*levelSet, adaptivity);
         state.counters["triangles"] = double(mesh.triangleCount());
     }
 }
+
+void BM_Mesh(benchmark::State& state) { meshAtAdaptivity(state, kSettings.adaptivity); }
 BENCHMARK(BM_Mesh)->Apply(sizes);
 
 /// The mesh with the adaptivity of the end-to-end pour (scenes/bench/pour_1e5.toml),
 /// where OpenVDB merges flat regions' voxels into larger polygons.
-void BM_MeshAdaptive(benchmark::State& state) {
-    const Globules g = benchPuddle(std::size_t(state.range(0)));
-    const auto field = splatMetaballs(g, kSettings.metaballKernel(), kSettings.influence,
-                                      resolveVoxelSize(kSettings, g));
-    const auto levelSet = fieldToLevelSet(*field, kSettings.isoValue, kSettings.bandWidth);
-    for (auto _ : state) {
-        const TriangleMesh mesh = meshLevelSet(*levelSet, 0.01);
-        state.counters["triangles"] = double(mesh.triangleCount());
-    }
-}
+void BM_MeshAdaptive(benchmark::State& state) { meshAtAdaptivity(state, 0.01); }
 BENCHMARK(BM_MeshAdaptive)->Apply(sizes);
 
 void BM_Fog(benchmark::State& state) {

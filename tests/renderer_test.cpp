@@ -280,72 +280,58 @@ TEST(Renderer, EmptyFrameShowsTheGroundAlone) {
     EXPECT_GT(b, 0);
 }
 
-TEST(Renderer, KeyLightCastsAShadowOnTheGround) {
-    Renderer renderer(kWidth, kHeight, 4);
+/// A sphere of radius 1 at (0, 3, 0) over a uniform ground lit by a white sun along
+/// @p sunDirection alone (matte, no environment, no occlusion), seen from @p camera.
+struct SunlitSphere {
     FrameSetup setup;
-    setup.camera = {{0, 12, 12}, {0, 0, 0}, 40};
-    LightSettings sun;
-    sun.direction = {0, -1, 0};  // straight down: the shadow lies under the sphere
-    sun.color = {1, 1, 1};
-    setup.lights = {sun};
-    setup.render.checkerSize = 1000;  // one checker square: a uniform ground
-    setup.render.environmentIntensity = 0;  // the key light alone, matte, no occlusion
-    setup.render.specular = 0;
-    setup.render.ambientOcclusion = 0;
-    const Globules g = oneSphere({0, 3, 0}, 1);
-    Bounds3 content;
-    content.add(Vec3{-4, 0, -4});
-    content.add(Vec3{4, 4, 4});
-    setup.content = content;
-    const Image image = renderer.drawSpheres(g, setup);
-    const Mat4 viewProj = perspective(40, double(kWidth) / kHeight, 0.1, 100) *
-                          lookAt(setup.camera.position, setup.camera.target);
-    auto pixelOf = [&](Vec3 p) {
+    Image image;
+    SunlitSphere(ViewCamera camera, Vec3 sunDirection) {
+        Renderer renderer(kWidth, kHeight, 4);
+        setup.camera = camera;
+        LightSettings sun;
+        sun.direction = sunDirection;
+        sun.color = {1, 1, 1};
+        setup.lights = {sun};
+        setup.render.checkerSize = 1000;  // one checker square: a uniform ground
+        setup.render.environmentIntensity = 0;
+        setup.render.specular = 0;
+        setup.render.ambientOcclusion = 0;
+        Bounds3 content;
+        content.add(Vec3{-4, 0, -4});
+        content.add(Vec3{4, 4, 4});
+        setup.content = content;
+        image = renderer.drawSpheres(oneSphere({0, 3, 0}, 1), setup);
+    }
+    /// The pixel (column, row from the top) where world point @p p appears.
+    std::pair<int, int> pixelOf(Vec3 p) const {
+        const Mat4 viewProj = perspective(40, double(kWidth) / kHeight, 0.1, 100) *
+                              lookAt(setup.camera.position, setup.camera.target);
         const Vec4 c = transformPoint(viewProj, p);
-        return std::pair<int, int>{int((c.x / c.w + 1) / 2 * kWidth),
-                                   int((1 - c.y / c.w) / 2 * kHeight)};
-    };
-    const Vec3 ground = srgbToLinear(setup.render.groundColor);
-    const auto [sx, sy] = pixelOf({0, 0, 0.6});  // in the shadow, in front of the sphere
-    const auto [lx, ly] = pixelOf({3, 0, 0});    // in the sun
+        return {int((c.x / c.w + 1) / 2 * kWidth), int((1 - c.y / c.w) / 2 * kHeight)};
+    }
+};
+
+TEST(Renderer, KeyLightCastsAShadowOnTheGround) {
+    // Straight down: the shadow lies under the sphere.
+    const SunlitSphere scene({{0, 12, 12}, {0, 0, 0}, 40}, {0, -1, 0});
+    const Vec3 ground = srgbToLinear(scene.setup.render.groundColor);
+    const auto [sx, sy] = scene.pixelOf({0, 0, 0.6});  // in the shadow, in front of the sphere
+    const auto [lx, ly] = scene.pixelOf({3, 0, 0});    // in the sun
     // Light squares of the checker are the ground colour itself (checker 0 there).
-    expectColor(image, sx, sy, {0, 0, 0}, 1);
-    EXPECT_NEAR(rgb(image, lx, ly)[0], srgbByte(ground.x), 3);
+    expectColor(scene.image, sx, sy, {0, 0, 0}, 1);
+    EXPECT_NEAR(rgb(scene.image, lx, ly)[0], srgbByte(ground.x), 3);
 }
 
 TEST(Renderer, ALowLightsLongShadowReachesItsEnd) {
     // The ground is drawn with the shadow filter only where a caster's shadow can fall
     // (ground_shadow_region.h). A low sun throws the sphere's shadow far from it: all of
-    // that must still be dark, and the ground beyond it lit.
-    Renderer renderer(kWidth, kHeight, 4);
-    FrameSetup setup;
-    setup.camera = {{-5, 14, 16}, {-5, 0, 0}, 40};
-    LightSettings sun;
-    sun.direction = normalized(Vec3{-1, -0.35, 0});  // low, from +x: the shadow falls to -x
-    sun.color = {1, 1, 1};
-    setup.lights = {sun};
-    setup.render.checkerSize = 1000;
-    setup.render.environmentIntensity = 0;
-    setup.render.specular = 0;
-    setup.render.ambientOcclusion = 0;
-    const Globules g = oneSphere({0, 3, 0}, 1);
-    Bounds3 content;
-    content.add(Vec3{-4, 0, -4});
-    content.add(Vec3{4, 4, 4});
-    setup.content = content;
-    const Image image = renderer.drawSpheres(g, setup);
-    const Mat4 viewProj = perspective(40, double(kWidth) / kHeight, 0.1, 100) *
-                          lookAt(setup.camera.position, setup.camera.target);
-    auto pixelOf = [&](Vec3 p) {
-        const Vec4 c = transformPoint(viewProj, p);
-        return std::pair<int, int>{int((c.x / c.w + 1) / 2 * kWidth),
-                                   int((1 - c.y / c.w) / 2 * kHeight)};
-    };
-    // The sphere's centre lands on the ground 3 / 0.35 = 8.6 units along -x.
-    const auto [sx, sy] = pixelOf({-3.0 / 0.35, 0, 0});
-    const auto [lx, ly] = pixelOf({-3.0 / 0.35 - 5, 0, 0});  // past the shadow's end
-    expectColor(image, sx, sy, {0, 0, 0}, 1);
-    EXPECT_GT(rgb(image, lx, ly)[0], 40);
+    // that must still be dark, and the ground beyond it lit. Low, from +x: the shadow
+    // falls to -x, the sphere's centre 3 / 0.35 = 8.6 units away.
+    const SunlitSphere scene({{-5, 14, 16}, {-5, 0, 0}, 40}, normalized(Vec3{-1, -0.35, 0}));
+    const auto [sx, sy] = scene.pixelOf({-3.0 / 0.35, 0, 0});
+    const auto [lx, ly] = scene.pixelOf({-3.0 / 0.35 - 5, 0, 0});  // past the shadow's end
+    expectColor(scene.image, sx, sy, {0, 0, 0}, 1);
+    EXPECT_GT(rgb(scene.image, lx, ly)[0], 40);
 }
 
 TEST(Renderer, MeshCoversItsProjection) {
