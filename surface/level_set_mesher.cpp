@@ -3,8 +3,11 @@
 // volumeToMesh is instantiated here, with this project's flags, instead of called in the
 // library's explicit instantiation: the pour's adaptive mesh (BM_MeshAdaptive) takes
 // 1.4-1.6x less time so, and the meshes are byte-identical. The templates are OpenVDB's
-// own, from the same headers; only where they are compiled changes.
+// own, from the same headers; only where they are compiled changes (not in the sanitizer
+// and fuzzing builds: surface/CMakeLists.txt).
+#ifdef GLOBULAR_MESHER_INSTANTIATED_HERE
 #undef OPENVDB_USE_EXPLICIT_INSTANTIATION
+#endif
 #include <openvdb/tools/VolumeToMesh.h>
 #include <tbb/parallel_for.h>
 
