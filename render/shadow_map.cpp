@@ -59,23 +59,19 @@ TexelRect ShadowMap::drawnTexels() {
     gl::checkErrors("reading the shadow map back");
     // The cleared far plane reads as the largest value; anything drawn is nearer.
     constexpr uint32_t kFar = 0xffffffffu;
-    TexelRect drawn;
-    drawn.x0 = mSize;
+    TexelRect drawn{mSize, mSize, -1, -1};
     for (int y = 0; y < mSize; ++y) {
         const uint32_t* row = mReadBack.data() + std::size_t(y) * std::size_t(mSize);
+        // A branch-free pass first: most rows hold nothing.
         uint32_t nearest = kFar;
         for (int x = 0; x < mSize; ++x) nearest = std::min(nearest, row[x]);
         if (nearest == kFar) continue;
         int first = 0, last = mSize - 1;
         while (row[first] == kFar) ++first;
         while (row[last] == kFar) --last;
-        if (drawn.y1 < drawn.y0) drawn.y0 = y;
-        drawn.y1 = y;
-        drawn.x0 = std::min(drawn.x0, first);
-        drawn.x1 = std::max(drawn.x1, last);
+        drawn = {std::min(drawn.x0, first), std::min(drawn.y0, y), std::max(drawn.x1, last), y};
     }
-    if (drawn.y1 < drawn.y0) return {};
-    return drawn;
+    return drawn.empty() ? TexelRect{} : drawn;
 }
 
 void ShadowMap::bindForSampling() const {
