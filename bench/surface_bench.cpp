@@ -41,6 +41,18 @@ void BM_Splat(benchmark::State& state) {
 }
 BENCHMARK(BM_Splat)->Apply(sizes);
 
+// The surface stage's own splat: the field and the velocity's three means beside it.
+void BM_SplatWithVelocity(benchmark::State& state) {
+    const Globules g = benchPuddle(std::size_t(state.range(0)));
+    const double h = resolveVoxelSize(kSettings, g);
+    for (auto _ : state) {
+        auto splat = splatMetaballsWithMean(g, {&g.vx, &g.vy, &g.vz}, kSettings.metaballKernel(),
+                                            kSettings.influence, h, kSettings.isoValue);
+        state.counters["leaves"] = double(splat.field->tree().leafCount());
+    }
+}
+BENCHMARK(BM_SplatWithVelocity)->Apply(sizes);
+
 void BM_LevelSet(benchmark::State& state) {
     const Globules g = benchPuddle(std::size_t(state.range(0)));
     const auto field = splatMetaballs(g, kSettings.metaballKernel(), kSettings.influence,

@@ -3,8 +3,9 @@
 // 8^3 block, summed into the block's voxels. Built once per instruction set, like the
 // force loops (sim/simd_path.h), and picked from the same GLOBULAR_SIMD choice: the
 // baseline build does each 8-voxel row as two SSE halves, the AVX2 one as one 8-lane
-// vector. Both builds keep every multiply and add separate (no fused multiply-add), so
-// they give the same bits: a frame's field does not depend on the node that made it.
+// vector, the AVX-512 one two neighbouring rows as one 16-lane vector. Every build keeps
+// each multiply and add separate (no fused multiply-add), so they give the same bits: a
+// frame's field does not depend on the node that made it.
 // OpenVDB-free; each build exports only its table (surface/CMakeLists.txt).
 
 #include <cstddef>
@@ -69,10 +70,16 @@ struct SplatKernels {
 
 namespace simd_scalar { extern const SplatKernels kSplatKernels; }
 namespace simd_avx2 { extern const SplatKernels kSplatKernels; }
+namespace simd_avx512 { extern const SplatKernels kSplatKernels; }
 
-/// The splat's loops for @p path (AVX-512 takes the AVX2 build: a row is 8 lanes).
+/// The splat's loops for @p path.
 inline const SplatKernels& splatKernels(SimdPath path) {
-    return path == SimdPath::Scalar ? simd_scalar::kSplatKernels : simd_avx2::kSplatKernels;
+    switch (path) {
+        case SimdPath::Scalar: return simd_scalar::kSplatKernels;
+        case SimdPath::Avx2: return simd_avx2::kSplatKernels;
+        case SimdPath::Avx512: return simd_avx512::kSplatKernels;
+    }
+    return simd_scalar::kSplatKernels;
 }
 
 }  // namespace globular

@@ -11,7 +11,7 @@ globular_test(surface_tests
 # The splat loop's builds (surface/splat_kernel.h) are isolated like the force loops'.
 add_test(NAME SplatKernel.ObjectsAreIsolatedAndBuiltForTheirPath
          COMMAND ${CMAKE_COMMAND} -DOBJECTS=${PROJECT_BINARY_DIR}/surface -DSTEM=splat_kernel
-                 -DTABLE=kSplatKernels -DPATHS=scalar,avx2 -DNM=${CMAKE_NM}
+                 -DTABLE=kSplatKernels -DPATHS=scalar,avx2,avx512 -DNM=${CMAKE_NM}
                  -DOBJDUMP=${CMAKE_OBJDUMP} -P ${CMAKE_CURRENT_SOURCE_DIR}/check_simd_objects.cmake)
 globular_test(surface_vdb_tests
     SOURCES surface_vdb_test.cpp
