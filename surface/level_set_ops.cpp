@@ -134,14 +134,21 @@ openvdb::Vec3SGrid::Ptr velocityInBand(const FloatGrid& x, const FloatGrid& y,
             if (!lx) continue;
             const auto* ly = ty.probeConstLeaf(distances.origin());
             const auto* lz = tz.probeConstLeaf(distances.origin());
-            std::unique_ptr<VecLeaf> leaf;
-            for (auto it = distances.cbeginValueOn(); it; ++it) {
-                const openvdb::Index i = it.pos();
-                if (*it > limit || !lx->isValueOn(i)) continue;
-                if (!leaf) leaf = std::make_unique<VecLeaf>(distances.origin(), vel->background());
-                leaf->setValueOn(i, openvdb::Vec3s(lx->getValue(i), ly ? ly->getValue(i) : 0.0f,
-                                                   lz ? lz->getValue(i) : 0.0f));
+            // The voxels kept: in the band, within the margin, and where the means are.
+            VecLeaf::NodeMaskType kept;
+            const float* distance = distances.buffer().data();
+            for (auto on = distances.getValueMask().beginOn(); on; ++on) {
+                if (!(distance[on.pos()] > limit) && lx->isValueOn(on.pos())) kept.setOn(on.pos());
             }
+            if (kept.isOff()) continue;
+            auto leaf = std::make_unique<VecLeaf>(distances.origin(), vel->background());
+            openvdb::Vec3s* values = leaf->buffer().data();
+            for (auto on = kept.beginOn(); on; ++on) {
+                const openvdb::Index i = on.pos();
+                values[i] = openvdb::Vec3s(lx->getValue(i), ly ? ly->getValue(i) : 0.0f,
+                                           lz ? lz->getValue(i) : 0.0f);
+            }
+            leaf->setValueMask(kept);
             out[b] = std::move(leaf);
         }
     });

@@ -23,11 +23,18 @@ constexpr int kDim = GlobuleBins::kBlockDim;
 /// A leaf holding @p values, active where @p activeWhere > 0.
 std::unique_ptr<LeafType> makeLeaf(const openvdb::Coord& origin, const float* values,
                                    const float* activeWhere) {
-    auto leaf = std::make_unique<LeafType>(origin, 0.0f, false);
+    // Partial: the buffer is not filled with the background only to be overwritten.
+    auto leaf = std::make_unique<LeafType>(openvdb::PartialCreate(), origin, 0.0f, false);
+    leaf->buffer().allocate();
     std::memcpy(leaf->buffer().data(), values, LeafType::SIZE * sizeof(float));
-    for (int v = 0; v < kDim * kDim * kDim; ++v) {
-        if (activeWhere[v] > 0.0f) leaf->setValueOn(openvdb::Index(v));
+    // The mask a 64-bit word at a time (its bit order is the voxel order).
+    LeafType::NodeMaskType active;
+    for (openvdb::Index w = 0; w < LeafType::NodeMaskType::WORD_COUNT; ++w) {
+        uint64_t bits = 0;
+        for (int b = 0; b < 64; ++b) bits |= uint64_t(activeWhere[w * 64 + b] > 0.0f) << b;
+        active.getWord<uint64_t>(w) = bits;
     }
+    leaf->setValueMask(active);
     return leaf;
 }
 
