@@ -20,20 +20,28 @@ using LeafType = openvdb::FloatTree::LeafNodeType;
 static_assert(LeafType::DIM == GlobuleBins::kBlockDim, "bins must match the tree's leaves");
 constexpr int kDim = GlobuleBins::kBlockDim;
 
-/// A leaf holding @p values, active where @p activeWhere > 0.
+using VoxelMask = LeafType::NodeMaskType;
+
+/// The voxels of a block's @p sum that some influence sphere reached (sum > 0): the
+/// active voxels of its leaves. Built a 64-bit word at a time (its bit order is the voxel
+/// order).
+VoxelMask reachedVoxels(const float* sum) {
+    VoxelMask reached;
+    for (openvdb::Index w = 0; w < VoxelMask::WORD_COUNT; ++w) {
+        uint64_t bits = 0;
+        for (int b = 0; b < 64; ++b) bits |= uint64_t(sum[w * 64 + b] > 0.0f) << b;
+        reached.getWord<uint64_t>(w) = bits;
+    }
+    return reached;
+}
+
+/// A leaf holding @p values, active at @p active.
 std::unique_ptr<LeafType> makeLeaf(const openvdb::Coord& origin, const float* values,
-                                   const float* activeWhere) {
+                                   const VoxelMask& active) {
     // Partial: the buffer is not filled with the background only to be overwritten.
     auto leaf = std::make_unique<LeafType>(openvdb::PartialCreate(), origin, 0.0f, false);
     leaf->buffer().allocate();
     std::memcpy(leaf->buffer().data(), values, LeafType::SIZE * sizeof(float));
-    // The mask a 64-bit word at a time (its bit order is the voxel order).
-    LeafType::NodeMaskType active;
-    for (openvdb::Index w = 0; w < LeafType::NodeMaskType::WORD_COUNT; ++w) {
-        uint64_t bits = 0;
-        for (int b = 0; b < 64; ++b) bits |= uint64_t(activeWhere[w * 64 + b] > 0.0f) << b;
-        active.getWord<uint64_t>(w) = bits;
-    }
     leaf->setValueMask(active);
     return leaf;
 }
@@ -57,18 +65,17 @@ std::unique_ptr<LeafType> splatBlock(const GlobuleBins& bins, std::size_t b, Add
         for (int c = 0; c < channels.count; ++c) out.weighted[c] = weightedSum + c * kVoxels;
     }
     next = add(bins, key, kernel, out, 0, deepAbove);
-    bool touched = false;
-    for (float v : sum) touched |= v > 0.0f;
-    if (!touched) return nullptr;
+    const VoxelMask reached = reachedVoxels(sum);
+    if (reached.isOff()) return nullptr;
 
     const openvdb::Coord origin(int(block[0] * kDim), int(block[1] * kDim), int(block[2] * kDim));
     if constexpr (kMean) {
         const std::size_t blocks = bins.candidateBlocks().size();
         for (int c = 0; c < channels.count; ++c) {
-            weighted[std::size_t(c) * blocks + b] = makeLeaf(origin, out.weighted[c], sum);
+            weighted[std::size_t(c) * blocks + b] = makeLeaf(origin, out.weighted[c], reached);
         }
     }
-    return makeLeaf(origin, sum, sum);
+    return makeLeaf(origin, sum, reached);
 }
 
 /// Splats every block into @p leaves and, with kMean, each channel's sum(w value) into
@@ -126,15 +133,12 @@ void splatAll(const GlobuleBins& bins, const MetaballKernel& kernel, const Splat
                 }
             }
             add(bins, blocks[b], kernel, out, next[b], INFINITY);
-            for (int v = 0; v < kDim * kDim * kDim; ++v) {
-                if (sum[v] > 0.0f) {
-                    leaf.setValueOn(openvdb::Index(v));
-                    if constexpr (kMean) {
-                        for (int c = 0; c < channels.count; ++c) {
-                            weighted[std::size_t(c) * blocks.size() + b]->setValueOn(
-                                openvdb::Index(v));
-                        }
-                    }
+            // Kernel values are >= 0: the voxels reached so far stay reached.
+            const VoxelMask reached = reachedVoxels(sum);
+            leaf.setValueMask(reached);
+            if constexpr (kMean) {
+                for (int c = 0; c < channels.count; ++c) {
+                    weighted[std::size_t(c) * blocks.size() + b]->setValueMask(reached);
                 }
             }
         }
