@@ -6,6 +6,8 @@
 #include <tbb/global_control.h>
 
 #include "bench_workload.h"
+#include "crowded_cell.h"
+#include "material_pairs.h"
 #include "simd_path.h"
 #include "simulation.h"
 
@@ -188,6 +190,22 @@ void BM_SimulationStepThermalDense(benchmark::State& state) {
     runDenseSteps(state, setup);
 }
 
+/// The adaptive step's densest-cell count (CrowdedCell), once per step, on the block after
+/// one step: its globules in the order the force loop left them (grid order), as in a run.
+void BM_CrowdedCell(benchmark::State& state) {
+    Simulation sim(liquidBlock(state.range(0)));
+    sim.step(0.001);
+    const Globules& g = sim.globules();
+    const double cell = 2.0 * PairTable(sim.setup().materials(), sim.setup().materialPairs).cutoff(1.0f);
+    CrowdedCell count;
+    uint32_t most = 0;
+    for (auto _ : state) {
+        most = count.most(g.px.data(), g.py.data(), g.pz.data(), g.size(), cell);
+        benchmark::DoNotOptimize(most);
+    }
+    state.counters["most"] = double(most);
+}
+
 void BM_SimulationStepAllPairs(benchmark::State& state) {
     runSteps(state, liquidBlock(state.range(0), "all_pairs"));
 }
@@ -242,6 +260,11 @@ BENCHMARK(BM_SimulationStepThermalDense)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(20);
+BENCHMARK(BM_CrowdedCell)
+    ->Arg(100000)
+    ->ArgName("globules")
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
 BENCHMARK(BM_SimulationStepAllPairs)
     ->ArgsProduct({{400, 10000}, {1}})
     ->ArgNames({"globules", "threads"})

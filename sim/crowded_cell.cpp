@@ -1,5 +1,7 @@
 #include "crowded_cell.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -9,9 +11,14 @@ namespace globular {
 namespace {
 
 int32_t cubeOf(float v, double inverseCell) {
-    const double c = std::floor(double(v) * inverseCell);
-    if (!(c == c)) return 0;  // NaN
-    return int32_t(std::clamp(c, -2147483647.0, 2147483647.0));
+    // floor(t) clamped to +-(2^31 - 1), NaN to 0; by truncation, not std::floor, which the
+    // baseline instruction set has no instruction for.
+    const double t = double(v) * inverseCell;
+    if (!(t == t)) return 0;  // NaN
+    if (t >= 2147483647.0) return 2147483647;
+    if (t <= -2147483647.0) return -2147483647;
+    const int32_t truncated = int32_t(t);
+    return truncated - int32_t(double(truncated) > t);
 }
 
 uint64_t hashOf(int32_t x, int32_t y, int32_t z) {
@@ -27,23 +34,47 @@ uint32_t CrowdedCell::most(const float* x, const float* y, const float* z, std::
                            double cell) {
     // At most half full, so a probe ends after a couple of slots.
     const std::size_t size = std::bit_ceil(std::max<std::size_t>(2 * n, 64));
-    if (mSlots.size() != size) {
+    if (mSlots.size() != size || mStamp == UINT32_MAX) {
         mSlots.assign(size, Slot{});
-    } else {
-        std::fill(mSlots.begin(), mSlots.end(), Slot{});
+        mStamp = 0;
     }
-    const std::size_t mask = size - 1;
+    ++mStamp;  // every slot of an earlier call is empty now: no pass clearing them
     const double inverse = 1.0 / cell;
+    // Points in a run of one cube are counted together: in the simulation's grid order
+    // (NeighborGrid) a cube's points mostly come together, so the table sees a run per
+    // cube and row instead of a probe per point. The runs are found in parallel, a chunk
+    // of points each; a run cut by a chunk's end is counted in two parts.
+    const std::size_t chunks = (n + kChunk - 1) / kChunk;
+    if (mRuns.size() < chunks) mRuns.resize(chunks);
+    tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+        std::vector<Run>& runs = mRuns[c];
+        runs.clear();
+        const std::size_t end = std::min(n, (c + 1) * kChunk);
+        Run run{0, 0, 0, 0};
+        for (std::size_t i = c * kChunk; i < end; ++i) {
+            const int32_t cx = cubeOf(x[i], inverse), cy = cubeOf(y[i], inverse),
+                          cz = cubeOf(z[i], inverse);
+            if (run.count > 0 && cx == run.x && cy == run.y && cz == run.z) {
+                ++run.count;
+                continue;
+            }
+            if (run.count > 0) runs.push_back(run);
+            run = {cx, cy, cz, 1};
+        }
+        if (run.count > 0) runs.push_back(run);
+    });
+    const std::size_t mask = size - 1;
     uint32_t most = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        const int32_t cx = cubeOf(x[i], inverse), cy = cubeOf(y[i], inverse),
-                      cz = cubeOf(z[i], inverse);
-        for (std::size_t s = hashOf(cx, cy, cz) & mask;; s = (s + 1) & mask) {
-            Slot& slot = mSlots[s];
-            if (slot.count == 0) slot = {cx, cy, cz, 0};
-            if (slot.x == cx && slot.y == cy && slot.z == cz) {
-                most = std::max(most, ++slot.count);
-                break;
+    for (std::size_t c = 0; c < chunks; ++c) {
+        for (const Run& run : mRuns[c]) {
+            for (std::size_t s = hashOf(run.x, run.y, run.z) & mask;; s = (s + 1) & mask) {
+                Slot& slot = mSlots[s];
+                if (slot.stamp != mStamp) slot = {run.x, run.y, run.z, 0, mStamp};
+                if (slot.x == run.x && slot.y == run.y && slot.z == run.z) {
+                    slot.count += run.count;
+                    most = std::max(most, slot.count);
+                    break;
+                }
             }
         }
     }

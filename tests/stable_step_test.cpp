@@ -161,6 +161,35 @@ TEST(CrowdedCell, NonFiniteAndFarPointsShareCubesAndNeverLowerTheCount) {
     EXPECT_EQ(count.most(x.data(), y.data(), z.data(), 0, 1.0), 0u);
 }
 
+TEST(CrowdedCell, RunsAcrossChunksAndCallsAddUp) {
+    // 70 000 points in one cube come in runs cut by the parallel chunks; a second call on
+    // the same table must not see the first's counts, a third none of the second's.
+    const std::size_t n = 70000;
+    std::vector<float> x(n), y(n, 0.25f), z(n, 0.75f);
+    for (std::size_t i = 0; i < n; ++i) x[i] = float(i % 1000) / 1000.0f;  // all in [0, 1)
+    CrowdedCell count;
+    EXPECT_EQ(count.most(x.data(), y.data(), z.data(), n, 1.0), n);
+    // Alternate cubes 0 and 1 along x: runs of one point, the two cubes counted apart.
+    for (std::size_t i = 0; i < n; ++i) x[i] = i % 2 ? 1.5f : 0.5f;
+    x[0] = 1.25f;  // cube 1 gets one more
+    EXPECT_EQ(count.most(x.data(), y.data(), z.data(), n, 1.0), n / 2 + 1);
+    EXPECT_EQ(count.most(x.data(), y.data(), z.data(), 10, 1.0), 6u);
+}
+
+TEST(CrowdedCell, CubesAreFlooredExactlyOnBothSidesOfZero) {
+    // Cube k is [k cell, (k + 1) cell): a point on a negative boundary belongs to the cube
+    // above it, one a hair below to the cube below.
+    const double cell = 3.5;
+    const std::vector<float> x{-3.5f, -3.4999998f, -0.0f, 0.0f, -7.0f, std::nextafter(-3.5f, -4.0f)},
+        y(6, 1.0f), z(6, 1.0f);
+    CrowdedCell count;
+    EXPECT_EQ(count.most(x.data(), y.data(), z.data(), 2, cell), 2u);  // both in cube -1
+    EXPECT_EQ(count.most(x.data() + 2, y.data(), z.data(), 2, cell), 2u);  // both in cube 0
+    // -7 lies in cube -2, as does the hair below -3.5: with -3.5 and -3.4999998 in cube
+    // -1, every cube holds two.
+    EXPECT_EQ(count.most(x.data(), y.data(), z.data(), 6, cell), 2u);
+}
+
 TEST(StableStep, TheContactBoundFollowsTheDensestCellsTrueCount) {
     // A block of cells of 3 globules with one of 3 + 4: the bound is that of 7 per cell.
     SimulationSetup setup = drop(8, true, 0.01);
