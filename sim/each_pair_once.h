@@ -102,21 +102,25 @@ void forEachList(const Globules& s, std::size_t first, const CellGroup& group, f
 inline void addBack(const GroupCandidates& list, const Reactions& r, float* x, float* y, float* z,
              float* heat) {
     const __m512 zero = _mm512_setzero_ps();
+    // Locals, not members: the masked stores below may alias anything.
+    const float *fromX = r.x.data(), *fromY = r.y.data(), *fromZ = r.z.data();
+    const float* fromHeat = heat ? r.heat.data() : nullptr;
+    const GroupCandidates::Source* sources = list.sources.data();
+    const uint32_t count = list.sourceCount;
     uint32_t c = 0;
-    for (uint32_t b = 0; b < list.sourceCount; ++b) {
-        const GroupCandidates::Source& source = list.sources[b];
+    for (uint32_t b = 0; b < count; ++b) {
+        const GroupCandidates::Source source = sources[b];
         const __mmask16 kept = source.kept;
-        const auto entries = [&](const std::vector<float>& from) {
-            return _mm512_maskz_expand_ps(kept, _mm512_loadu_ps(from.data() + c));
+        const auto entries = [&](const float* from) {
+            return _mm512_maskz_expand_ps(kept, _mm512_loadu_ps(from + c));
         };
-        const __m512 rx = entries(r.x), ry = entries(r.y), rz = entries(r.z);
-        const __m512 rh = heat ? entries(r.heat) : zero;
+        const __m512 rx = entries(fromX), ry = entries(fromY), rz = entries(fromZ);
+        const __m512 rh = heat ? entries(fromHeat) : zero;
         c += uint32_t(__builtin_popcount(kept));
         const __mmask16 met = _mm512_cmp_ps_mask(rx, zero, _CMP_NEQ_UQ) |
                               _mm512_cmp_ps_mask(ry, zero, _CMP_NEQ_UQ) |
                               _mm512_cmp_ps_mask(rz, zero, _CMP_NEQ_UQ) |
                               _mm512_cmp_ps_mask(rh, zero, _CMP_NEQ_UQ);
-        if (!met) continue;
         const auto add = [&](float* to, __m512 v) {
             float* at = to + source.at;
             _mm512_mask_storeu_ps(at, met, _mm512_add_ps(_mm512_maskz_loadu_ps(met, at), v));
