@@ -32,13 +32,6 @@ uint64_t hashOf(int32_t x, int32_t y, int32_t z) {
 
 uint32_t CrowdedCell::most(const float* x, const float* y, const float* z, std::size_t n,
                            double cell) {
-    // At most half full, so a probe ends after a couple of slots.
-    const std::size_t size = std::bit_ceil(std::max<std::size_t>(2 * n, 64));
-    if (mSlots.size() != size || mStamp == UINT32_MAX) {
-        mSlots.assign(size, Slot{});
-        mStamp = 0;
-    }
-    ++mStamp;  // every slot of an earlier call is empty now: no pass clearing them
     const double inverse = 1.0 / cell;
     // Points in a run of one cube are counted together: in the simulation's grid order
     // (NeighborGrid) a cube's points mostly come together, so the table sees a run per
@@ -63,6 +56,18 @@ uint32_t CrowdedCell::most(const float* x, const float* y, const float* z, std::
         }
         if (run.count > 0) runs.push_back(run);
     });
+    std::size_t runs = 0;
+    for (std::size_t c = 0; c < chunks; ++c) runs += mRuns[c].size();
+    // At most half full, so a probe ends after a couple of slots; sized by the runs, which
+    // in grid order are far fewer than the points. A call uses the first `size` slots, and
+    // slots of earlier calls read as empty (their stamp), so none is cleared.
+    const std::size_t size = std::bit_ceil(std::max<std::size_t>(2 * runs, 64));
+    if (mSlots.size() < size) mSlots.assign(size, Slot{});
+    if (mStamp == UINT32_MAX) {
+        std::fill(mSlots.begin(), mSlots.end(), Slot{});
+        mStamp = 0;
+    }
+    ++mStamp;
     const std::size_t mask = size - 1;
     uint32_t most = 0;
     for (std::size_t c = 0; c < chunks; ++c) {

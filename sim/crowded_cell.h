@@ -15,8 +15,9 @@ namespace globular {
 /// cubes, and non-finite ones, share the outermost cube or cube 0: such counts can only
 /// grow, never shrink. The result does not depend on the points' order. Consecutive points
 /// in one cube are counted as a run (the simulation passes its globules in grid order,
-/// where a cube's points mostly come together), chunks of points in parallel: on the 1e5
-/// block, 0.25 ms a call on two threads instead of 1 ms (docs/performance.md).
+/// where a cube's points mostly come together), chunks of points in parallel, and the table
+/// sized by the runs: on the 1e5 block, 0.25 ms a call on two threads instead of 1 ms
+/// (docs/performance.md).
 class CrowdedCell {
 public:
     /// The most of the @p n points (@p x, @p y, @p z) in one cube; 0 when n is 0.
