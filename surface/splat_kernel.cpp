@@ -88,6 +88,10 @@ std::size_t addGlobules(const GlobuleBins& bins, uint64_t key, const MetaballKer
         const int z1 = std::min(kDim - 1, int(std::floor(cz + r)));
         if (x0 > x1 || y0 > y1 || z0 > z1) return;
         const float invR2 = 1.0f / (r * r);
+        // Read once: the stores into the sums below may alias them as far as the
+        // compiler knows, so they would be read again for every row.
+        float value[kMaxSplatChannels] = {};
+        for (int c = 0; c < channels; ++c) value[c] = channelValues[c][i];
         // Whole 8-voxel rows at a time, voxels outside the sphere adding 0: no branches
         // in the innermost work, and cheaper than clipping each row to its chord, because
         // rows inside a leaf are short.
@@ -133,7 +137,7 @@ std::size_t addGlobules(const GlobuleBins& bins, uint64_t key, const MetaballKer
                 if constexpr (kMean) {
                     for (int c = 0; c < channels; ++c) {
                         std::memcpy(&values, weighted[c] + offset, sizeof values);
-                        values += k * channelValues[c][i];
+                        values += k * value[c];
                         std::memcpy(weighted[c] + offset, &values, sizeof values);
                     }
                 }
