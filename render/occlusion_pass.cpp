@@ -10,10 +10,11 @@ namespace {
 
 std::string occlusionVertex() {
     return shaders::version() + R"(
-// One triangle covering the screen.
+// The corners of the rectangles the pass covers, window coordinates.
+layout(location = 0) in vec2 aCorner;
+uniform vec2 uViewport;
 void main() {
-    vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
-    gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+    gl_Position = vec4(aCorner / uViewport * 2.0 - 1.0, 0.0, 1.0);
 }
 )";
 }
@@ -54,9 +55,14 @@ vec3 worldAt(ivec2 p) {
     return uEye + viewDepth(depthAt(p)) * (uCamForward + ndc.x * uCamRight + ndc.y * uCamUp);
 }
 
-// The neighbour on the nearer side: no normal is bent across a silhouette.
-vec3 nearerStep(vec3 p, vec3 before, vec3 after) {
-    vec3 a = p - before, b = after - p;
+// The step to the neighbour along @p axis on the nearer side: no normal is bent across a
+// silhouette. At the frame's edge, to the one inside it: the one beyond would read the
+// edge pixel's depth on another ray, a point off the surface, and tilt the normal.
+vec3 nearerStep(ivec2 pixel, ivec2 axis, vec3 p) {
+    ivec2 before = pixel - axis, after = pixel + axis;
+    vec3 a = p - worldAt(before), b = worldAt(after) - p;
+    if (any(lessThan(before, ivec2(0)))) return b;
+    if (any(greaterThanEqual(after, ivec2(uViewport)))) return a;
     return dot(a, a) < dot(b, b) ? a : b;
 }
 
@@ -69,8 +75,8 @@ void main() {
     float d = depthAt(pixel);
     if (d >= 1.0) discard;  // the background
     vec3 p = worldAt(pixel);
-    vec3 dx = nearerStep(p, worldAt(pixel - ivec2(1, 0)), worldAt(pixel + ivec2(1, 0)));
-    vec3 dy = nearerStep(p, worldAt(pixel - ivec2(0, 1)), worldAt(pixel + ivec2(0, 1)));
+    vec3 dx = nearerStep(pixel, ivec2(1, 0), p);
+    vec3 dy = nearerStep(pixel, ivec2(0, 1), p);
     vec3 n = normalize(cross(dx, dy));
     if (dot(n, uEye - p) < 0.0) n = -n;
     vec3 helper = abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
@@ -95,7 +101,10 @@ void main() {
         vec3 q = p + reach * (sinTheta * cos(phi) * t + sinTheta * sin(phi) * b + cosTheta * n);
         vec4 c = uViewProj * vec4(q, 1.0);
         if (c.w <= uNear) continue;
-        ivec2 at = ivec2((c.xy / c.w * 0.5 + 0.5) * uViewport);
+        ivec2 at = ivec2(floor((c.xy / c.w * 0.5 + 0.5) * uViewport));
+        // Beyond the frame nothing is known to occlude: the edge pixel's depth lies on
+        // another ray (it darkened the ground along the frame's edges).
+        if (any(lessThan(at, ivec2(0))) || any(greaterThanEqual(at, ivec2(uViewport)))) continue;
         float seen = viewDepth(depthAt(at));
         // Only what lies within the radius occludes (not a far wall behind a silhouette).
         float inRange = smoothstep(0.0, 1.0, uRadius / max(abs(depth - seen), 1e-6));
@@ -112,11 +121,32 @@ void main() {
 OcclusionPass::OcclusionPass(int samples)
     : mSamples(samples),
       mProgram("ambient occlusion", occlusionVertex(), occlusionFragment(samples)),
-      mVertexArray(gl::makeVertexArray()) {}
+      mVertexArray(gl::makeVertexArray()),
+      mCorners(gl::makeBuffer()) {
+    glBindVertexArray(mVertexArray.id());
+    glBindBuffer(GL_ARRAY_BUFFER, mCorners.id());
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
 
 void OcclusionPass::apply(const FrameUniforms& f, const FrameTarget& target, float radius,
-                          float strength) const {
-    if (!(strength > 0) || !(radius > 0)) return;
+                          float strength,
+                          const std::optional<std::vector<PixelRect>>& region) const {
+    if (!(strength > 0) || !(radius > 0) || (region && region->empty())) return;
+    // Two triangles per rectangle, corners on pixel edges.
+    const std::vector<PixelRect> whole{{0, 0, f.width - 1, f.height - 1}};
+    std::vector<float> corners;
+    corners.reserve((region ? region->size() : 1) * 12);
+    for (const PixelRect& r : region ? *region : whole) {
+        const float x0 = float(r.x0), y0 = float(r.y0), x1 = float(r.x1 + 1), y1 = float(r.y1 + 1);
+        corners.insert(corners.end(), {x0, y0, x1, y0, x1, y1, x0, y0, x1, y1, x0, y1});
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, mCorners.id());
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(corners.size() * sizeof(float)), corners.data(),
+                 GL_STREAM_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
     target.bindColorOnly();
     glUseProgram(mProgram.id());
     setVec3(mProgram, "uEye", f.eye);
@@ -139,7 +169,7 @@ void OcclusionPass::apply(const FrameUniforms& f, const FrameTarget& target, flo
     glEnable(GL_BLEND);
     glBlendFunc(GL_ZERO, GL_SRC_COLOR);
     glBindVertexArray(mVertexArray.id());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDrawArrays(GL_TRIANGLES, 0, GLsizei(corners.size() / 2));
     glBindVertexArray(0);
     glDisable(GL_BLEND);
     glEnable(GL_DEPTH_TEST);

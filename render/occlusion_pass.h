@@ -8,9 +8,13 @@
 // where globules touch it darken. Being applied after shading, it dims direct light too
 // within R of an occluder; the key light's shadow map already darkens most such places.
 
+#include <optional>
+#include <vector>
+
 #include "frame_target.h"
 #include "frame_uniforms.h"
 #include "gl_objects.h"
+#include "occlusion_region.h"
 
 namespace globular::detail {
 
@@ -19,14 +23,16 @@ class OcclusionPass {
     /// @param samples of the frame target it reads.
     explicit OcclusionPass(int samples);
     /// Darkens the colour of @p target (left bound afterwards) by the occlusion within
-    /// @p radius world units, @p strength in [0, 1].
+    /// @p radius world units, @p strength in [0, 1], over the pixels of @p region
+    /// (occlusion_region.h; std::nullopt: every pixel).
     void apply(const FrameUniforms& frame, const FrameTarget& target, float radius,
-               float strength) const;
+               float strength, const std::optional<std::vector<PixelRect>>& region) const;
 
   private:
     int mSamples;
     gl::Program mProgram;
     gl::VertexArray mVertexArray;
+    gl::Buffer mCorners;  ///< the rectangles' triangles, window coordinates
 };
 
 }  // namespace globular::detail

@@ -17,6 +17,7 @@
 #include "liquid_mesh_pass.h"
 #include "mesh_pass.h"
 #include "occlusion_pass.h"
+#include "occlusion_region.h"
 #include "shadow_map.h"
 #include "sphere_pass.h"
 #include "sub_frames.h"
@@ -136,6 +137,7 @@ struct Renderer::Impl {
     std::optional<detail::OcclusionPass> occlusion;
     LinearFrame frame;
     bool culling = true;
+    bool occlusionRegions = true;
     GlBackend backend = GlBackend::OSMesa;  // its GL objects live in this back end's context
 
     Impl(int w, int h, int n, int shadowSize, bool passes)
@@ -228,13 +230,33 @@ struct Renderer::Impl {
         }
     }
 
-    /// Screen-space ambient occlusion over what is drawn so far.
-    void occlude(const FrameUniforms& f, const FrameSetup& s, const Bounds3& box) {
+    /// Screen-space ambient occlusion over what is drawn so far: the props, and
+    /// @p content unless it is a liquid (drawn after), occlude; the ground does not.
+    template <typename Content>
+    void occlude(const FrameUniforms& f, const FrameSetup& s, const Bounds3& box,
+                 const Content& content) {
         if (!(s.render.ambientOcclusion > 0)) return;
         if (!occlusion) occlusion.emplace(samples);
         const double radius = s.render.occlusionRadius > 0 ? s.render.occlusionRadius
                                                            : std::max(box.radius(), 1e-3) / 30;
-        occlusion->apply(f, target, float(radius), float(s.render.ambientOcclusion));
+        // Only around the occluders: over the whole frame the pass was a quarter of an
+        // opaque mesh frame (docs/performance.md, twenty-fourth pass).
+        detail::OcclusionRegion region(f, radius);
+        if (!occlusionRegions) region.addEverything();
+        if (!isLiquid(content)) {
+            if constexpr (requires { content.addOccluders(region); }) {
+                content.addOccluders(region);
+            } else {
+                region.addEverything();
+            }
+        }
+        for (const Prop& prop : s.props) {
+            const TriangleMesh& m = prop.mesh;
+            region.addTriangles(m.positions.data(), m.vertexCount(), m.triangles.data(),
+                                m.triangleCount());
+        }
+        const auto rects = region.whole() ? std::nullopt : std::optional(region.rects());
+        occlusion->apply(f, target, float(radius), float(s.render.ambientOcclusion), rects);
     }
 
     /// The motion pass's interval: spheres only, with passes.
@@ -335,7 +357,7 @@ struct Renderer::Impl {
         // are byte-identical; the other two lose one pixel near the horizon that it darkened
         // by 1-3 levels of 255). It cost a fifth of the pour's 1920x1080 liquid frames on
         // llvmpipe (docs/performance.md, seventeenth pass).
-        if (!isLiquid(content) || !s.props.empty()) occlude(f, s, box);
+        if (!isLiquid(content) || !s.props.empty()) occlude(f, s, box, content);
         if (isLiquid(content)) content.draw(f);
         target.read(frame, f.frameSeconds > 0, passes);
         gl::checkErrors("drawing a frame");
@@ -408,6 +430,7 @@ void Renderer::renderSpheres(const Globules& globules, const FrameSetup& setup) 
         const Globules& globules;
         detail::SpherePass::Value value;
         bool spheres() const { return true; }
+        void addOccluders(detail::OcclusionRegion& region) const { region.addSpheres(globules); }
         void prepare(const FrameUniforms& f) { pass.upload(globules, value, f); }
         void shadow(const FrameUniforms& f) { pass.drawShadow(f); }
         void draw(const FrameUniforms& f) {
@@ -449,6 +472,10 @@ void Renderer::renderMesh(const MeshView& mesh, const FrameSetup& setup) {
         const detail::FrameTarget& target;
         const MeshView& mesh;
         bool spheres() const { return false; }
+        void addOccluders(detail::OcclusionRegion& region) const {
+            region.addTriangles(mesh.positions, mesh.vertexCount, mesh.triangles,
+                                mesh.triangleCount);
+        }
         void prepare(const FrameUniforms&) { pass.upload(mesh); }
         void shadow(const FrameUniforms& f) {
             using Cull = detail::MeshPass::Cull;
@@ -582,6 +609,7 @@ void Renderer::Impl::drawLiquidMesh(const MeshView& mesh, const FrameSetup& setu
 }
 
 void Renderer::setOcclusionCulling(bool on) { mImpl->culling = on; }
+void Renderer::setOcclusionRegions(bool on) { mImpl->occlusionRegions = on; }
 
 const LinearFrame& Renderer::lastFrame() const { return mImpl->frame; }
 

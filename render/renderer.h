@@ -100,6 +100,9 @@ class Renderer {
     /// Occlusion culling of hidden spheres before drawing (on by default). The image is
     /// the same either way; off is for tests and measurements.
     void setOcclusionCulling(bool on);
+    /// The ambient occlusion drawn only where an occluder can darken it (on by default).
+    /// The image is the same either way; off is for tests and measurements.
+    void setOcclusionRegions(bool on);
 
     /// The last frame drawn, linear and premultiplied, with the passes when asked for.
     const LinearFrame& lastFrame() const;

@@ -12,6 +12,7 @@ globular_test(render_unit_tests
             tone_map_test.cpp
             environment_test.cpp
             ground_shadow_region_test.cpp
+            occlusion_region_test.cpp
     LIBS globular_render OpenEXR::OpenEXR Imath::Imath)
 globular_test(renderer_tests
     SOURCES renderer_test.cpp

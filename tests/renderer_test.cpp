@@ -485,5 +485,70 @@ TEST(RendererProps, AContainerIsACutawayThatShowsItsContent) {
     EXPECT_NEAR(wall[0], wall[1], 3);
 }
 
+/// The frames @p draw(renderer, setup) makes with the ambient occlusion drawn only
+/// around the occluders and over every pixel differ in no pixel.
+template <typename Draw>
+void expectOcclusionRegionsChangeNothing(const FrameSetup& setup, Draw&& draw) {
+    for (int samples : {1, 4}) {
+        Renderer renderer(kWidth, kHeight, samples);
+        const Image around = draw(renderer, setup);
+        renderer.setOcclusionRegions(false);
+        const Image everywhere = draw(renderer, setup);
+        FrameSetup none = setup;
+        none.render.ambientOcclusion = 0;
+        const Image unoccluded = draw(renderer, none);
+        std::size_t differing = 0, darkened = 0;
+        for (int y = 0; y < kHeight; ++y) {
+            for (int x = 0; x < kWidth; ++x) {
+                differing += rgb(around, x, y) != rgb(everywhere, x, y);
+                darkened += rgb(everywhere, x, y) != rgb(unoccluded, x, y);
+            }
+        }
+        EXPECT_EQ(differing, 0u) << samples << " samples";
+        EXPECT_GT(darkened, 500u) << "the occlusion must show for the test to mean anything";
+    }
+}
+
+/// Looking down at the ground steeply (no horizon, where the pass over every pixel also
+/// darkens a few ground pixels whose normals its depth steps bend: see
+/// docs/performance.md, twenty-fourth pass), far enough that the content fills a part of
+/// the frame; a strong occlusion reaching well beyond the content.
+FrameSetup occludedSetup() {
+    FrameSetup s;
+    s.camera = {{-6, 16, 12}, {0, 1, 0}, 40};
+    s.lights = {LightSettings{}};
+    s.render.ambientOcclusion = 1;
+    s.render.occlusionRadius = 2;
+    return s;
+}
+
+TEST(RendererProps, OcclusionAroundTheOccludersOnlyLeavesTheImageUnchanged) {
+    // The occlusion pass over the occluders' tiles only (render/occlusion_region.h): the
+    // same frame, byte for byte, as over every pixel, for spheres, a mesh and a prop,
+    // with the contact shadows on the ground around them and on each other.
+    Globules heap;
+    for (int i = 0; i < 40; ++i) {
+        heap.add({-1.5 + 0.15 * (i % 7), 0.5 + 0.3 * (i / 7), 0.4 * (i % 3)}, {}, 0.5f, 1, i);
+    }
+    FrameSetup withProp = occludedSetup();
+    Prop box = boxProp(false);
+    for (std::size_t v = 0; v < box.mesh.positions.size(); v += 3) {
+        box.mesh.positions[v] += 5;      // beside the heap, standing on the ground
+        box.mesh.positions[v + 1] += 2;
+    }
+    withProp.props = {box};
+    auto spheres = [&](Renderer& r, const FrameSetup& s) { return r.drawSpheres(heap, s); };
+    expectOcclusionRegionsChangeNothing(occludedSetup(), spheres);
+    expectOcclusionRegionsChangeNothing(withProp, spheres);
+    // The box as the content, a mesh.
+    Prop content = boxProp(false);
+    for (std::size_t v = 1; v < content.mesh.positions.size(); v += 3) content.mesh.positions[v] += 2;
+    const TriangleMesh& m = content.mesh;
+    const MeshView view{m.positions.data(), m.normals.data(), m.vertexCount(), m.triangles.data(),
+                        m.triangleCount(), true};
+    expectOcclusionRegionsChangeNothing(
+        occludedSetup(), [&](Renderer& r, const FrameSetup& s) { return r.drawMesh(view, s); });
+}
+
 }  // namespace
 }  // namespace globular
