@@ -1,12 +1,13 @@
 #pragma once
 // Internal to render/: screen-space ambient occlusion. After the opaque content, the set
-// and the ground are drawn, one full-screen pass reads the depth buffer, rebuilds each
-// pixel's world position and normal, and counts how many points of a hemisphere of
-// radius R above it lie behind what the camera sees (Mittring, "Finding Next Gen:
-// CryEngine 2", SIGGRAPH 2007; the normal-oriented hemisphere of later variants). The
-// colour is multiplied by 1 - strength * (occluded fraction), so creases and the floor
-// where globules touch it darken. Being applied after shading, it dims direct light too
-// within R of an occluder; the key light's shadow map already darkens most such places.
+// and the ground are drawn, one pass over the screen (where occlusion_region.h says it can
+// darken) reads the depth buffer, rebuilds each pixel's world position and normal, and
+// counts how many points of a hemisphere of radius R above it lie behind what the camera
+// sees (Mittring, "Finding Next Gen: CryEngine 2", SIGGRAPH 2007; the normal-oriented
+// hemisphere of later variants). The colour is multiplied by 1 - strength * (occluded
+// fraction), so creases and the floor where globules touch it darken. Being applied after
+// shading, it dims direct light too within R of an occluder; the key light's shadow map
+// already darkens most such places.
 
 #include <optional>
 #include <vector>

@@ -105,7 +105,8 @@ std::vector<PixelRect> OcclusionRegion::rects() const {
     std::vector<uint8_t> covered(mNearest.size(), 0);
     for (int ty = 0; ty < mTiles[1]; ++ty) {
         for (int tx = 0; tx < mTiles[0]; ++tx) {
-            const float depth = mNearest[std::size_t(ty) * std::size_t(mTiles[0]) + std::size_t(tx)];
+            const float depth =
+                mNearest[std::size_t(ty) * std::size_t(mTiles[0]) + std::size_t(tx)];
             if (!std::isfinite(depth)) continue;
             const int tile[2] = {tx, ty};
             int from[2], to[2];

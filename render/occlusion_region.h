@@ -52,8 +52,8 @@ class OcclusionRegion {
 
     const FrameUniforms& mFrame;
     double mRadius;
-    double mExtent[2];  ///< the image's half width and height at unit distance
-    int mTiles[2];      ///< across, up
+    double mExtent[2];            ///< the image's half width and height at unit distance
+    int mTiles[2];                ///< across, up
     std::vector<float> mNearest;  ///< per tile, the least occluder depth in it (or +inf)
     bool mWhole = false;
 };

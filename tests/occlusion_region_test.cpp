@@ -77,9 +77,12 @@ TEST(OcclusionRegion, HoldsEveryPixelWhoseTapCanLandOnAnOccluder) {
         for (int k = 0; k < 200000; ++k) {
             double a = u(rng), b = u(rng);
             if (a + b > 1) a = 1 - a, b = 1 - b;
-            const Vec3 o{kTriangle[0] + a * (kTriangle[3] - kTriangle[0]) + b * (kTriangle[6] - kTriangle[0]),
-                         kTriangle[1] + a * (kTriangle[4] - kTriangle[1]) + b * (kTriangle[7] - kTriangle[1]),
-                         kTriangle[2] + a * (kTriangle[5] - kTriangle[2]) + b * (kTriangle[8] - kTriangle[2])};
+            const Vec3 o{kTriangle[0] + a * (kTriangle[3] - kTriangle[0]) +
+                             b * (kTriangle[6] - kTriangle[0]),
+                         kTriangle[1] + a * (kTriangle[4] - kTriangle[1]) +
+                             b * (kTriangle[7] - kTriangle[1]),
+                         kTriangle[2] + a * (kTriangle[5] - kTriangle[2]) +
+                             b * (kTriangle[8] - kTriangle[2])};
             const Vec3 q = o + (o - eye) * (2 * kRadius * u(rng) / length(o - eye));
             Vec3 step{s(rng), s(rng), s(rng)};
             if (dot(step, step) > 1) continue;
@@ -87,8 +90,8 @@ TEST(OcclusionRegion, HoldsEveryPixelWhoseTapCanLandOnAnOccluder) {
             int x, y;
             if (!pixelOf(f, p, x, y)) continue;
             ++checked;
-            ASSERT_TRUE(holds(rects, x, y)) << "pixel " << x << ", " << y << " from eye "
-                                            << eye.x << ", " << eye.y << ", " << eye.z;
+            ASSERT_TRUE(holds(rects, x, y)) << "pixel " << x << ", " << y << " from eye " << eye.x
+                                            << ", " << eye.y << ", " << eye.z;
         }
         EXPECT_GT(checked, 10000);
     }

@@ -542,7 +542,9 @@ TEST(RendererProps, OcclusionAroundTheOccludersOnlyLeavesTheImageUnchanged) {
     expectOcclusionRegionsChangeNothing(withProp, spheres);
     // The box as the content, a mesh.
     Prop content = boxProp(false);
-    for (std::size_t v = 1; v < content.mesh.positions.size(); v += 3) content.mesh.positions[v] += 2;
+    for (std::size_t v = 1; v < content.mesh.positions.size(); v += 3) {
+        content.mesh.positions[v] += 2;
+    }
     const TriangleMesh& m = content.mesh;
     const MeshView view{m.positions.data(), m.normals.data(), m.vertexCount(), m.triangles.data(),
                         m.triangleCount(), true};
