@@ -99,8 +99,8 @@ std::vector<PixelRect> OcclusionRegion::rects() const {
     // A tap q of pixel p is occluded only where the depth buffer shows, at q's image, an
     // occluder at depth z_o in front of q: p then lies on the screen (|x_p| <= 1), q
     // within the radius of p, and deeper than z_o, so q's image lies within
-    // radius (1 / e + 1) / z_o of p's. A tap beyond the frame reads the edge pixel
-    // nearest to it, which lies no farther.
+    // radius (1 / e + 1) / z_o of p's. A tap beyond the frame counts as unoccluded
+    // (occlusion_pass.cpp).
     const int pixels[2] = {mFrame.width, mFrame.height};
     std::vector<uint8_t> covered(mNearest.size(), 0);
     for (int ty = 0; ty < mTiles[1]; ++ty) {

@@ -34,8 +34,8 @@ class OcclusionRegion {
                       std::size_t triangleCount);
     /// Adds the globules' spheres as occluders.
     void addSpheres(const Globules& globules);
-    /// Every pixel may be darkened: an occluder at or behind the near plane, too close for
-    /// the taps' reach to be bounded, or not finite.
+    /// Every pixel may be darkened (an occluder this class cannot bound: the add* members
+    /// call it for one at or behind the near plane, or not finite).
     void addEverything() { mWhole = true; }
 
     bool whole() const { return mWhole; }
@@ -46,9 +46,6 @@ class OcclusionRegion {
   private:
     /// Records an occluder covering ndc [x0, x1] x [y0, y1] at view depths >= @p depth.
     void addFootprint(double x0, double x1, double y0, double y1, double depth);
-    /// How far in ndc (x, y) a tap of a pixel at view depth > depth - radius can reach
-    /// from it; false when unbounded.
-    bool reach(double depth, double& x, double& y) const;
 
     const FrameUniforms& mFrame;
     double mRadius;
