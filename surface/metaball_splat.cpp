@@ -2,6 +2,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -64,7 +65,7 @@ std::unique_ptr<LeafType> splatBlock(const GlobuleBins& bins, std::size_t b, Add
         out.channels = &channels;
         for (int c = 0; c < channels.count; ++c) out.weighted[c] = weightedSum + c * kVoxels;
     }
-    next = add(bins, key, kernel, out, 0, deepAbove);
+    next = add(bins, key, kernel, out, 0, deepAbove, VoxelBox{});
     const VoxelMask reached = reachedVoxels(sum);
     if (reached.isOff()) return nullptr;
 
@@ -78,11 +79,29 @@ std::unique_ptr<LeafType> splatBlock(const GlobuleBins& bins, std::size_t b, Add
     return makeLeaf(origin, sum, reached);
 }
 
+/// The voxels of a block within @p depth voxels (Chebyshev) of those of its neighbours
+/// @p open holds ([(dx+1)*9 + (dy+1)*3 + dz+1], the block itself at 13 unused): their
+/// bounding box, the whole block for a depth of a block or more.
+VoxelBox voxelsNear(const std::array<bool, 27>& open, int depth) {
+    if (depth >= kDim) return VoxelBox{};
+    VoxelBox box;
+    for (int a = 0; a < 3; ++a) box.lo[a] = kDim, box.hi[a] = -1;
+    for (int n = 0; n < 27; ++n) {
+        if (n == 13 || !open[std::size_t(n)]) continue;
+        const int d[3] = {n / 9 - 1, n / 3 % 3 - 1, n % 3 - 1};
+        for (int a = 0; a < 3; ++a) {
+            box.lo[a] = std::min(box.lo[a], d[a] > 0 ? kDim - depth : 0);
+            box.hi[a] = std::max(box.hi[a], d[a] < 0 ? depth - 1 : kDim - 1);
+        }
+    }
+    return box;
+}
+
 /// Splats every block into @p leaves and, with kMean, each channel's sum(w value) into
 /// @p weighted (channel c of block b at c * blocks + b).
 template <bool kMean>
 void splatAll(const GlobuleBins& bins, const MetaballKernel& kernel, const SplatChannels& channels,
-              float deepAbove, std::vector<std::unique_ptr<LeafType>>& leaves,
+              float deepAbove, int exactDepth, std::vector<std::unique_ptr<LeafType>>& leaves,
               std::vector<std::unique_ptr<LeafType>>& weighted) {
     const AddGlobules add = splatKernels(activeSimdPath()).add[int(kernel.type)][kMean];
     const auto& blocks = bins.candidateBlocks();
@@ -99,7 +118,9 @@ void splatAll(const GlobuleBins& bins, const MetaballKernel& kernel, const Splat
     // A block whose sum stopped early keeps its partial values only when its 26
     // neighbours are above deepAbove everywhere as well: then no voxel within a block of
     // it is at or below, and nothing near the iso surface reads its values. Otherwise
-    // its sum goes on where it stopped, in the same order: bit-identical to a full sum.
+    // its sum goes on where it stopped, in the same order, over its voxels within
+    // exactDepth of the neighbours that are not (the only ones that can lie within
+    // exactDepth of a voxel at or below): bit-identical to a full sum there.
     auto isAbove = [&](std::size_t b) {
         return next[b] < complete || (leaves[b] && allAbove(leaves[b]->buffer().data(), deepAbove));
     };
@@ -111,16 +132,16 @@ void splatAll(const GlobuleBins& bins, const MetaballKernel& kernel, const Splat
         for (std::size_t b = range.begin(); b < range.end(); ++b) {
             if (next[b] == complete) continue;
             const auto c = GlobuleBins::unpack(blocks[b]);
+            std::array<bool, 27> open{};  // neighbours that may hold voxels at or below
             bool deep = true;
-            for (int dx = -1; dx <= 1 && deep; ++dx) {
-                for (int dy = -1; dy <= 1 && deep; ++dy) {
-                    for (int dz = -1; dz <= 1 && deep; ++dz) {
-                        const uint64_t key = GlobuleBins::pack(c[0] + dx, c[1] + dy, c[2] + dz);
-                        auto it = std::lower_bound(blocks.begin(), blocks.end(), key);
-                        deep = it != blocks.end() && *it == key &&
-                               above[std::size_t(it - blocks.begin())];
-                    }
-                }
+            for (int n = 0; n < 27; ++n) {
+                if (n == 13) continue;
+                const uint64_t key =
+                    GlobuleBins::pack(c[0] + n / 9 - 1, c[1] + n / 3 % 3 - 1, c[2] + n % 3 - 1);
+                auto it = std::lower_bound(blocks.begin(), blocks.end(), key);
+                open[std::size_t(n)] =
+                    it == blocks.end() || *it != key || !above[std::size_t(it - blocks.begin())];
+                deep &= !open[std::size_t(n)];
             }
             if (deep) continue;
             LeafType& leaf = *leaves[b];
@@ -132,7 +153,7 @@ void splatAll(const GlobuleBins& bins, const MetaballKernel& kernel, const Splat
                     out.weighted[c] = weighted[std::size_t(c) * blocks.size() + b]->buffer().data();
                 }
             }
-            add(bins, blocks[b], kernel, out, next[b], INFINITY);
+            add(bins, blocks[b], kernel, out, next[b], INFINITY, voxelsNear(open, exactDepth));
             // Kernel values are >= 0: the voxels reached so far stay reached.
             const VoxelMask reached = reachedVoxels(sum);
             leaf.setValueMask(reached);
@@ -158,28 +179,38 @@ FloatGrid::Ptr gridOf(std::vector<std::unique_ptr<LeafType>>& leaves, double vox
     return grid;
 }
 
+void checkExactDepth(int exactDepth) {
+    if (exactDepth < 1) {
+        throw Error("splatMetaballs: exactDepth " + std::to_string(exactDepth) +
+                    " (at least 1 voxel)");
+    }
+}
+
 }  // namespace
 
 FloatGrid::Ptr splatMetaballs(const Globules& globules, const MetaballKernel& kernel,
-                              double influence, double voxelSize, double deepAbove) {
+                              double influence, double voxelSize, double deepAbove,
+                              int exactDepth) {
+    checkExactDepth(exactDepth);
     const GlobuleBins bins(globules, voxelSize, influence);
     std::vector<std::unique_ptr<LeafType>> leaves(bins.candidateBlocks().size()), unused;
-    splatAll<false>(bins, kernel, SplatChannels{}, float(deepAbove), leaves, unused);
+    splatAll<false>(bins, kernel, SplatChannels{}, float(deepAbove), exactDepth, leaves, unused);
     return gridOf(leaves, voxelSize, "field");
 }
 
 MeanSplat splatMetaballsWithMean(const Globules& globules,
                                  const std::vector<const std::vector<float>*>& values,
                                  const MetaballKernel& kernel, double influence,
-                                 double voxelSize, double deepAbove) {
+                                 double voxelSize, double deepAbove, int exactDepth) {
     return splatMetaballsWithMean(globules, GlobuleBins(globules, voxelSize, influence), values,
-                                  kernel, voxelSize, deepAbove);
+                                  kernel, voxelSize, deepAbove, exactDepth);
 }
 
 MeanSplat splatMetaballsWithMean(const Globules& globules, const GlobuleBins& bins,
                                  const std::vector<const std::vector<float>*>& values,
                                  const MetaballKernel& kernel, double voxelSize,
-                                 double deepAbove) {
+                                 double deepAbove, int exactDepth) {
+    checkExactDepth(exactDepth);
     if (values.empty() || values.size() > std::size_t(kMaxSplatChannels)) {
         throw Error("splatMetaballsWithMean: " + std::to_string(values.size()) +
                     " value arrays (1 to " + std::to_string(kMaxSplatChannels) + ")");
@@ -194,7 +225,7 @@ MeanSplat splatMetaballsWithMean(const Globules& globules, const GlobuleBins& bi
     }
     const std::size_t blocks = bins.candidateBlocks().size();
     std::vector<std::unique_ptr<LeafType>> leaves(blocks), weighted(values.size() * blocks);
-    splatAll<true>(bins, kernel, channels, float(deepAbove), leaves, weighted);
+    splatAll<true>(bins, kernel, channels, float(deepAbove), exactDepth, leaves, weighted);
     // sum(w value) / sum(w) where the field is; the background elsewhere.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 64), [&](auto range) {
         for (std::size_t b = range.begin(); b < range.end(); ++b) {

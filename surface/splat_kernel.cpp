@@ -57,7 +57,8 @@ struct KernelEval {
 /// AddGlobules (splat_kernel.h) for kernel @p K, with means or not.
 template <KernelType K, bool kMean>
 std::size_t addGlobules(const GlobuleBins& bins, uint64_t key, const MetaballKernel& type,
-                        const BlockSums& out, std::size_t from, float deepAbove) {
+                        const BlockSums& out, std::size_t from, float deepAbove,
+                        const VoxelBox& exact) {
     const KernelEval<K> kernel(type);
     float* const sum = out.sum;
     // Copies, so that the compiler need not reload them after each store into the sums.
@@ -80,12 +81,12 @@ std::size_t addGlobules(const GlobuleBins& bins, uint64_t key, const MetaballKer
         const float cx = float(bins.centreX(i) - double(ox));
         const float cy = float(bins.centreY(i) - double(oy));
         const float cz = float(bins.centreZ(i) - double(oz));
-        const int x0 = std::max(0, int(std::ceil(cx - r)));
-        const int x1 = std::min(kDim - 1, int(std::floor(cx + r)));
-        const int y0 = std::max(0, int(std::ceil(cy - r)));
-        const int y1 = std::min(kDim - 1, int(std::floor(cy + r)));
-        const int z0 = std::max(0, int(std::ceil(cz - r)));
-        const int z1 = std::min(kDim - 1, int(std::floor(cz + r)));
+        const int x0 = std::max(exact.lo[0], int(std::ceil(cx - r)));
+        const int x1 = std::min(exact.hi[0], int(std::floor(cx + r)));
+        const int y0 = std::max(exact.lo[1], int(std::ceil(cy - r)));
+        const int y1 = std::min(exact.hi[1], int(std::floor(cy + r)));
+        const int z0 = std::max(exact.lo[2], int(std::ceil(cz - r)));
+        const int z1 = std::min(exact.hi[2], int(std::floor(cz + r)));
         if (x0 > x1 || y0 > y1 || z0 > z1) return;
         const float invR2 = 1.0f / (r * r);
         // Read once: the stores into the sums below may alias them as far as the

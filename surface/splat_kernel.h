@@ -55,13 +55,22 @@ inline bool allAbove(const float* sum, float threshold) {
     return result;
 }
 
+/// A box of a block's voxels, bounds inclusive (local coordinates 0-7).
+struct VoxelBox {
+    int lo[3] = {0, 0, 0};
+    int hi[3] = {GlobuleBins::kBlockDim - 1, GlobuleBins::kBlockDim - 1,
+                 GlobuleBins::kBlockDim - 1};
+};
+
 /// Adds the globules of the blocks bins.nearOrder()[from...] into @p out, the voxels of
-/// block @p key. With a finite @p deepAbove, stops after a whole shell of blocks (those
-/// at one distance) once every voxel exceeds it. @return the index in nearOrder() it
-/// stopped at (its size when complete).
+/// block @p key: the full sums within @p exact, in the same order as over the whole
+/// block (voxels beyond it may receive some of the additions or none). With a finite
+/// @p deepAbove, stops after a whole shell of blocks (those at one distance) once every
+/// voxel exceeds it. @return the index in nearOrder() it stopped at (its size when
+/// complete).
 using AddGlobules = std::size_t (*)(const GlobuleBins& bins, uint64_t key,
                                     const MetaballKernel& kernel, const BlockSums& out,
-                                    std::size_t from, float deepAbove);
+                                    std::size_t from, float deepAbove, const VoxelBox& exact);
 
 /// One build's loops: [kernel type][with means].
 struct SplatKernels {

@@ -3,6 +3,9 @@
 #include <openvdb/io/File.h>
 #include <tbb/parallel_invoke.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "collider_cut.h"
 #include "errors.h"
 #include "surface_grids.h"
@@ -10,6 +13,22 @@
 #include "vertex_attributes.h"
 
 namespace globular {
+
+namespace {
+
+/// How deep inside the iso surface (voxels) a frame reads the splat's exact sums: the
+/// level set's narrow band and the velocity kept there, ceil(band width) + 1 (splatMetaballs).
+/// Filters and the colliders' cut move the surface inwards, and the temperature is kept
+/// throughout the inside: then whole leaves, as deep as a leaf of partial sums lies.
+int exactDepth(const SurfaceSettings& settings, const std::vector<PlacedSolid>& colliders,
+               const Globules& globules) {
+    const bool surfaceMoves =
+        !settings.filterChain().empty() || (settings.subtractColliders && !colliders.empty());
+    if (surfaceMoves || !globules.temperature.empty()) return GlobuleBins::kBlockDim;
+    return std::min(GlobuleBins::kBlockDim, int(std::ceil(settings.bandWidth)) + 1);
+}
+
+}  // namespace
 
 SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& settings,
                              const std::vector<PlacedSolid>& colliders, bool severalMaterials) {
@@ -29,7 +48,8 @@ SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& se
         std::vector<const std::vector<float>*> values{&globules.vx, &globules.vy, &globules.vz};
         if (!globules.temperature.empty()) values.push_back(&globules.temperature);
         MeanSplat splat = splatMetaballsWithMean(globules, bins, values, kernel, frame.voxelSize,
-                                                 settings.isoValue);
+                                                 settings.isoValue,
+                                                 exactDepth(settings, colliders, globules));
         openvdb::FloatGrid::Ptr field = splat.field;
         velocity.assign(splat.means.begin(), splat.means.begin() + 3);
         if (!globules.temperature.empty()) temperature = splat.means[3];

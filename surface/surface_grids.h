@@ -34,10 +34,10 @@ struct SurfaceGrids {
     /// voxels beyond its surface), background 0, class "unknown"; null when the globules
     /// carry no temperature.
     openvdb::FloatGrid::Ptr temperature;
-    /// Kernel-weighted mean velocity of the globules, defined where temperature is
-    /// (inside the liquid and two voxels beyond), background 0, class unknown, vector
-    /// type contravariant relative (what Houdini and Blender read as a velocity); null
-    /// only in files written before it existed.
+    /// Kernel-weighted mean velocity of the globules in the level set's narrow band, out
+    /// to two voxels beyond the surface (velocityInBand), background 0, class unknown,
+    /// vector type contravariant relative (what Houdini and Blender read as a velocity);
+    /// null only in files written before it existed.
     openvdb::Vec3SGrid::Ptr vel;
 };
 
@@ -55,14 +55,19 @@ SurfaceGrids readSurfaceVdb(const std::filesystem::path& path);
 /// @param voxelSize world units, > 0; the transform is linear with voxel centres at
 ///        integer multiples of it.
 /// @param deepAbove with the default (infinity) every voxel holds its full sum. When
-///        finite (the iso value), a leaf whose every voxel, and every voxel of its 26
-///        neighbouring leaves, exceeds it may hold partial sums (still above it): such
-///        voxels lie at least a leaf inside the iso surface, and neither the level set nor
-///        the mesh reads them. Deep inside a liquid that leaves out about half the sum.
+///        finite (the iso value), voxels farther than @p exactDepth voxels (Chebyshev) from
+///        every voxel at or below it may hold partial sums (still above it): at the default
+///        depth, those of leaves whose every voxel, and every voxel of their 26
+///        neighbouring leaves, exceeds it. Deep inside a liquid that leaves out about half
+///        the sum.
+/// @param exactDepth 1 to 8 voxels (a leaf's width: whole leaves). The level set reads the
+///        field within 2 voxels of the iso surface's outer side; its narrow band (and the
+///        velocity kept there) reaches ceil(band width) + 1.
 /// @throw SimulationError / ResourceError from GlobuleBins (non-finite or far globules).
 openvdb::FloatGrid::Ptr splatMetaballs(const Globules& globules, const MetaballKernel& kernel,
                                        double influence, double voxelSize,
-                                       double deepAbove = std::numeric_limits<double>::infinity());
+                                       double deepAbove = std::numeric_limits<double>::infinity(),
+                                       int exactDepth = GlobuleBins::kBlockDim);
 
 /// The field of splatMetaballs and, from the same kernel values in the same pass, the
 /// kernel-weighted means of per-globule values: sum(w_i value_i) / sum(w_i) at every
@@ -79,13 +84,15 @@ MeanSplat splatMetaballsWithMean(const Globules& globules,
                                  const std::vector<const std::vector<float>*>& values,
                                  const MetaballKernel& kernel, double influence,
                                  double voxelSize,
-                                 double deepAbove = std::numeric_limits<double>::infinity());
+                                 double deepAbove = std::numeric_limits<double>::infinity(),
+                                 int exactDepth = GlobuleBins::kBlockDim);
 /// The same with the globules already binned (@p bins of @p globules at @p voxelSize), so a
 /// frame bins its globules once for the splat and the mesh's vertex attributes.
 MeanSplat splatMetaballsWithMean(const Globules& globules, const GlobuleBins& bins,
                                  const std::vector<const std::vector<float>*>& values,
                                  const MetaballKernel& kernel, double voxelSize,
-                                 double deepAbove = std::numeric_limits<double>::infinity());
+                                 double deepAbove = std::numeric_limits<double>::infinity(),
+                                 int exactDepth = GlobuleBins::kBlockDim);
 
 /// Deactivates the voxels of @p grid where @p levelSet (same transform) is above
 /// @p margin (world units), sets them to the background and prunes what is left empty:

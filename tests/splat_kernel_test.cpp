@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -38,7 +39,7 @@ std::vector<float> splatBlocks(SimdPath path, const GlobuleBins& bins, const Glo
             sums.channels = &channels;
             sums.weighted[0] = weighted;
         }
-        EXPECT_EQ(add(bins, key, kernel, sums, 0, INFINITY), bins.nearOrder().size());
+        EXPECT_EQ(add(bins, key, kernel, sums, 0, INFINITY, VoxelBox{}), bins.nearOrder().size());
         out.insert(out.end(), sum, sum + kVoxels);
         if (means) out.insert(out.end(), weighted, weighted + kVoxels);
     }
@@ -89,6 +90,52 @@ TEST(SplatKernel, SumsAreTheKernelValuesOfTheGlobulesInReach) {
         }
         EXPECT_LT(worst, 1e-4) << simdPathName(path);
     }
+}
+
+TEST(SplatKernel, GivesTheFullSumsWithinTheBoxAsked) {
+    const Globules g = randomGlobules(60, 5);
+    const GlobuleBins bins(g, 0.1, 2.0);
+    const MetaballKernel kernel{KernelType::Wyvill};
+    SplatChannels channels;
+    channels.value[channels.count++] = g.vy.data();
+    std::mt19937 random(11);
+    std::size_t skipped = 0;
+    for (SimdPath path : supportedSimdPaths()) {
+        const AddGlobules add = splatKernels(path).add[int(kernel.type)][1];
+        for (uint64_t key : bins.candidateBlocks()) {
+            // A random box, from a random place in the order (a sum taken up again where
+            // it stopped).
+            VoxelBox box;
+            for (int a = 0; a < 3; ++a) {
+                box.lo[a] = int(random() % 8);
+                box.hi[a] = box.lo[a] + int(random() % std::size_t(8 - box.lo[a]));
+            }
+            const std::size_t from = random() % bins.nearOrder().size();
+            alignas(64) float sum[512], weighted[512], fullSum[512], fullWeighted[512];
+            std::fill(sum, sum + 512, 0.5f);
+            std::fill(fullSum, fullSum + 512, 0.5f);
+            std::fill(weighted, weighted + 512, 0.5f);
+            std::fill(fullWeighted, fullWeighted + 512, 0.5f);
+            BlockSums part{sum}, full{fullSum};
+            part.channels = full.channels = &channels;
+            part.weighted[0] = weighted;
+            full.weighted[0] = fullWeighted;
+            add(bins, key, kernel, full, from, INFINITY, VoxelBox{});
+            add(bins, key, kernel, part, from, INFINITY, box);
+            for (int v = 0; v < 512; ++v) {
+                const int p[3] = {v >> 6, (v >> 3) & 7, v & 7};
+                bool inside = true;
+                for (int a = 0; a < 3; ++a) inside &= p[a] >= box.lo[a] && p[a] <= box.hi[a];
+                if (inside) {
+                    ASSERT_EQ(std::memcmp(&sum[v], &fullSum[v], sizeof(float)), 0);
+                    ASSERT_EQ(std::memcmp(&weighted[v], &fullWeighted[v], sizeof(float)), 0);
+                } else {
+                    skipped += sum[v] != fullSum[v];
+                }
+            }
+        }
+    }
+    EXPECT_GT(skipped, 0u);  // the others were left out
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <random>
 #include <utility>
 
+#include "errors.h"
 #include "globule_bins.h"
 #include "grid_compare.h"
 #include "surface_estimate.h"
@@ -125,6 +126,87 @@ TEST(MetaballSplat, DeepLeavesMayHoldPartialSumsThatChangeNothingNearTheSurface)
     EXPECT_EQ(wrong, 0u);
     // The level sets are identical.
     expectSameGrid(*fieldToLevelSet(*exact, 0.5, 3.0), *fieldToLevelSet(*deep, 0.5, 3.0));
+}
+
+/// The dense cube above, moving (its velocity is read in the level set's band), offset
+/// by @p shift voxels along each axis: the iso surface crosses the leaves at other places.
+Globules movingCube(const int shift[3]) {
+    Globules g;
+    for (int x = 0; x < 12; ++x) {
+        for (int y = 0; y < 12; ++y) {
+            for (int z = 0; z < 12; ++z) {
+                g.add({x + 0.25 * shift[0], y + 0.25 * shift[1], z + 0.25 * shift[2]},
+                      {0.1 * x, -0.2 * y, 0.3 * z + 0.01 * x * y}, 1.0f, 1, 0);
+            }
+        }
+    }
+    return g;
+}
+
+TEST(MetaballSplat, PartialSumsKeepTheirDistanceFromTheSurface) {
+    openvdb::initialize();
+    const MetaballKernel kernel{KernelType::Wyvill};
+    std::size_t partialAt[3] = {0, 0, 0};
+    for (int s = 0; s < 8; ++s) {
+        const int shift[3] = {s, 3 * s % 8, 5 * s % 8};
+        SCOPED_TRACE(s);
+        const Globules g = movingCube(shift);
+        const std::vector<const std::vector<float>*> velocity{&g.vx, &g.vy, &g.vz};
+        const MeanSplat exact = splatMetaballsWithMean(g, velocity, kernel, 2.0, 0.25);
+        auto acc = exact.field->getConstAccessor();
+        auto meanX = exact.means[0]->getConstAccessor();
+        const auto exactLevelSet = fieldToLevelSet(*exact.field, 0.5, 3.0);
+        const auto exactVelocity =
+            velocityInBand(*exact.means[0], *exact.means[1], *exact.means[2], *exactLevelSet, 0.5);
+        for (int d = 0; d < 3; ++d) {
+            const int depth = 2 << d;  // 2, 4, 8
+            SCOPED_TRACE(depth);
+            const MeanSplat deep =
+                splatMetaballsWithMean(g, velocity, kernel, 2.0, 0.25, 0.5, depth);
+            // Every voxel within depth of one at or below the iso value holds its full sum
+            // and means; the others hold more than the iso value.
+            std::size_t partial = 0, wrong = 0;
+            auto deepMeanX = deep.means[0]->getConstAccessor();
+            for (auto it = deep.field->cbeginValueOn(); it; ++it) {
+                const Coord c = it.getCoord();
+                const bool same =
+                    *it == acc.getValue(c) && deepMeanX.getValue(c) == meanX.getValue(c);
+                partial += !same;
+                if (!same && !(*it > 0.5f)) ++wrong;
+                bool nearSurface = false;
+                for (int dx = -depth; dx <= depth && !same && !nearSurface; ++dx) {
+                    for (int dy = -depth; dy <= depth && !nearSurface; ++dy) {
+                        for (int dz = -depth; dz <= depth && !nearSurface; ++dz) {
+                            nearSurface = acc.getValue(c.offsetBy(dx, dy, dz)) <= 0.5f;
+                        }
+                    }
+                }
+                wrong += nearSurface;
+            }
+            EXPECT_EQ(wrong, 0u);
+            partialAt[d] += partial;
+            // The level set and the velocity in its band are identical from a depth of 2
+            // and ceil(band width) + 1 on.
+            const auto levelSet = fieldToLevelSet(*deep.field, 0.5, 3.0);
+            expectSameGrid(*exactLevelSet, *levelSet);
+            if (depth < 4) continue;
+            const auto vel =
+                velocityInBand(*deep.means[0], *deep.means[1], *deep.means[2], *levelSet, 0.5);
+            EXPECT_EQ(vel->activeVoxelCount(), exactVelocity->activeVoxelCount());
+            std::size_t differ = 0;
+            auto other = exactVelocity->getConstAccessor();
+            for (auto it = vel->cbeginValueOn(); it; ++it) {
+                differ += *it != other.getValue(it.getCoord());
+            }
+            EXPECT_EQ(differ, 0u);
+        }
+    }
+    // The shallower, the more partial sums.
+    EXPECT_GT(partialAt[0], partialAt[1]);
+    EXPECT_GT(partialAt[1], partialAt[2]);
+    EXPECT_GT(partialAt[2], 0u);
+    const int shift[3] = {0, 0, 0};
+    EXPECT_THROW(splatMetaballs(movingCube(shift), kernel, 2.0, 0.25, 0.5, 0), Error);
 }
 
 /// A lone globule's level set at voxel size @p h with a band @p band voxels wide: every
