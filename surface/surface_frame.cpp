@@ -20,10 +20,10 @@ namespace {
 /// level set's narrow band and the velocity kept there, ceil(band width) + 1 (splatMetaballs).
 /// Filters and the colliders' cut move the surface inwards, and the temperature is kept
 /// throughout the inside: then whole leaves, as deep as a leaf of partial sums lies.
-int exactDepth(const SurfaceSettings& settings, const std::vector<PlacedSolid>& colliders,
-               const Globules& globules) {
+int exactDepth(const SurfaceSettings& settings, const std::vector<FilterStep>& filters,
+               const std::vector<PlacedSolid>& colliders, const Globules& globules) {
     const bool surfaceMoves =
-        !settings.filterChain().empty() || (settings.subtractColliders && !colliders.empty());
+        !filters.empty() || (settings.subtractColliders && !colliders.empty());
     if (surfaceMoves || !globules.temperature.empty()) return GlobuleBins::kBlockDim;
     return std::min(GlobuleBins::kBlockDim, int(std::ceil(settings.bandWidth)) + 1);
 }
@@ -40,6 +40,7 @@ SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& se
     const MetaballKernel kernel = settings.metaballKernel();
     openvdb::FloatGrid::Ptr levelSet, temperature;
     std::vector<openvdb::FloatGrid::Ptr> velocity;  // x, y, z
+    const std::vector<FilterStep> filters = settings.filterChain();
     // Binned once, for the splat and the mesh's vertex attributes.
     const GlobuleBins bins(globules, frame.voxelSize, settings.influence);
     {
@@ -47,16 +48,16 @@ SurfaceFrame surfaceGlobules(const Globules& globules, const SurfaceSettings& se
         // (and the velocity and temperature there means over the nearer globules).
         std::vector<const std::vector<float>*> values{&globules.vx, &globules.vy, &globules.vz};
         if (!globules.temperature.empty()) values.push_back(&globules.temperature);
+        const int depth = exactDepth(settings, filters, colliders, globules);
         MeanSplat splat = splatMetaballsWithMean(globules, bins, values, kernel, frame.voxelSize,
-                                                 settings.isoValue,
-                                                 exactDepth(settings, colliders, globules));
+                                                 settings.isoValue, depth);
         openvdb::FloatGrid::Ptr field = splat.field;
         velocity.assign(splat.means.begin(), splat.means.begin() + 3);
         if (!globules.temperature.empty()) temperature = splat.means[3];
         frame.fieldLeaves = field->tree().leafCount();
         levelSet = fieldToLevelSet(*field, settings.isoValue, settings.bandWidth);
     }  // the field is the largest grid: free it before the level-set steps
-    applyFilters(*levelSet, settings.filterChain());
+    applyFilters(*levelSet, filters);
     frame.dropletsRemoved = removeDroplets(levelSet, settings.dropletVolume);
     // After the filters, which would round the cut's edges off the walls.
     if (settings.subtractColliders && !colliders.empty()) subtractColliders(*levelSet, colliders);

@@ -89,15 +89,26 @@ TEST(MetaballSplat, FieldIsTheKernelSumOverExactlyTheInfluenceSpheres) {
     EXPECT_GE(estimateSurface(g, s).fieldLeaves, field->tree().leafCount());
 }
 
-TEST(MetaballSplat, DeepLeavesMayHoldPartialSumsThatChangeNothingNearTheSurface) {
-    openvdb::initialize();
-    // A dense cube of globules, 12 wide: 48 voxels, so some leaves lie a leaf inside.
+/// A dense cube of globules, 12 wide (48 voxels at voxel 0.25, so some leaves lie a leaf
+/// inside), moving (its velocity is read in the level set's band), offset by @p shift
+/// voxels (of 0.25) along each axis: the iso surface crosses the leaves at other places.
+Globules movingCube(const int shift[3]) {
     Globules g;
     for (int x = 0; x < 12; ++x) {
         for (int y = 0; y < 12; ++y) {
-            for (int z = 0; z < 12; ++z) g.add({x * 1.0, y * 1.0, z * 1.0}, {0, 0, 0}, 1.0f, 1, 0);
+            for (int z = 0; z < 12; ++z) {
+                g.add({x + 0.25 * shift[0], y + 0.25 * shift[1], z + 0.25 * shift[2]},
+                      {0.1 * x, -0.2 * y, 0.3 * z + 0.01 * x * y}, 1.0f, 1, 0);
+            }
         }
     }
+    return g;
+}
+
+TEST(MetaballSplat, DeepLeavesMayHoldPartialSumsThatChangeNothingNearTheSurface) {
+    openvdb::initialize();
+    const int unshifted[3] = {0, 0, 0};
+    const Globules g = movingCube(unshifted);
     const MetaballKernel kernel{KernelType::Wyvill};
     const auto exact = splatMetaballs(g, kernel, 2.0, 0.25);
     const auto deep = splatMetaballs(g, kernel, 2.0, 0.25, 0.5);
@@ -126,21 +137,6 @@ TEST(MetaballSplat, DeepLeavesMayHoldPartialSumsThatChangeNothingNearTheSurface)
     EXPECT_EQ(wrong, 0u);
     // The level sets are identical.
     expectSameGrid(*fieldToLevelSet(*exact, 0.5, 3.0), *fieldToLevelSet(*deep, 0.5, 3.0));
-}
-
-/// The dense cube above, moving (its velocity is read in the level set's band), offset
-/// by @p shift voxels along each axis: the iso surface crosses the leaves at other places.
-Globules movingCube(const int shift[3]) {
-    Globules g;
-    for (int x = 0; x < 12; ++x) {
-        for (int y = 0; y < 12; ++y) {
-            for (int z = 0; z < 12; ++z) {
-                g.add({x + 0.25 * shift[0], y + 0.25 * shift[1], z + 0.25 * shift[2]},
-                      {0.1 * x, -0.2 * y, 0.3 * z + 0.01 * x * y}, 1.0f, 1, 0);
-            }
-        }
-    }
-    return g;
 }
 
 TEST(MetaballSplat, PartialSumsKeepTheirDistanceFromTheSurface) {
